@@ -1,0 +1,22 @@
+#include "haptics/scene/builtin/builtin_scenes.h"
+
+#include "haptics/core/error.h"
+
+namespace voxhap {
+
+std::vector<std::string> builtinSceneNames() {
+  return {"ball-and-socket", "peg-in-hole", "landing-gear"};
+}
+
+Scene makeBuiltinScene(const std::string& name, std::uint64_t seed, const ProgressFn& progress) {
+  if (name == "ball-and-socket") return makeBallAndSocket();
+  if (name == "peg-in-hole") return makePegInHole();
+  if (name == "landing-gear") return makeLandingGear(seed, progress);
+  std::string known;
+  for (const std::string& candidate : builtinSceneNames()) {
+    known += (known.empty() ? "" : ", ") + candidate;
+  }
+  throw Error("unknown built-in scene '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace voxhap

@@ -1,0 +1,684 @@
+#include "haptics/scene/gltf_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <system_error>
+
+#include <tiny_gltf.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "haptics/core/error.h"
+
+namespace voxhap {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quoted(const std::string& name) { return "'" + name + "'"; }
+
+// Both limits keep recursion (tinygltf's JSON conversion, our node walk) far from
+// the end of the stack; real glTF files stay within a few dozen levels.
+constexpr std::size_t kMaxJsonDepth = 256;
+constexpr std::size_t kMaxNodeDepth = 256;
+
+/// Deepest nesting of JSON arrays and objects in `text`, not counting brackets in strings.
+std::size_t jsonNestingDepth(const unsigned char* text, std::size_t size) {
+  std::size_t depth = 0;
+  std::size_t deepest = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < size; ++i) {
+    const unsigned char c = text[i];
+    if (inString) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        inString = false;
+      }
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '{' || c == '[') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((c == '}' || c == ']') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+/// Reads a whole regular file, refusing devices, pipes and files over the limit.
+std::vector<unsigned char> readRegularFile(const fs::path& path, std::string& error) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) {
+    error = "no such file";
+    return {};
+  }
+  if (!fs::is_regular_file(status)) {
+    error = "not a regular file";
+    return {};
+  }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) {
+    error = "cannot read its size: " + ec.message();
+    return {};
+  }
+  if (size > kMaxGltfFileBytes) {
+    error = "larger than the 4 GiB limit (" + std::to_string(size) + " bytes)";
+    return {};
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
+  if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))) {
+    error = std::string("cannot read: ") + std::strerror(errno);
+    return {};
+  }
+  return bytes;
+}
+
+// tinygltf file-system callbacks: external buffers go through readRegularFile so
+// that a URI naming a device or a huge file cannot hang or exhaust memory. A path
+// that exists but is no regular file is "found" so that the read reports why.
+// tinygltf looks for a URI next to the glTF file and then in the working directory;
+// `user` is the glTF file's directory, and only paths inside it count, so that a
+// missing buffer is reported rather than replaced by a namesake from elsewhere.
+bool fileExists(const std::string& path, void* user) {
+  const std::string& baseDir = *static_cast<const std::string*>(user);
+  if (!baseDir.empty()) {
+    const std::string prefix = baseDir.back() == '/' ? baseDir : baseDir + "/";
+    if (path.rfind(prefix, 0) != 0) return false;
+  }
+  std::error_code ec;
+  return fs::exists(path, ec);
+}
+std::string expandFilePath(const std::string& path, void*) { return path; }
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void*) {
+  std::string error;
+  *out = readRegularFile(path, error);
+  if (!error.empty() && err) *err += error;  // tinygltf prefixes the path
+  return error.empty();
+}
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                    void*) {
+  if (err) *err = "writing is not allowed while loading";
+  return false;
+}
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+               const unsigned char*, int, void*) {
+  return true;  // only geometry and base colours matter to Voxhap
+}
+
+/// Converts a tinygltf message (several lines, with trailing newlines) to one short
+/// line: tinygltf quotes whole data: URIs, which can be megabytes of base64.
+std::string oneLine(std::string text) {
+  constexpr std::size_t kMaxChars = 400;
+  for (std::size_t from = 0; (from = text.find(";base64,", from)) != std::string::npos;) {
+    const std::size_t begin = from + 8;
+    std::size_t end = begin;
+    while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end])) && text[end] != '\'' &&
+           text[end] != '"') {
+      ++end;
+    }
+    if (end - begin > 16) text.replace(begin, end - begin, "...(" + std::to_string(end - begin) + " chars)");
+    from = begin;
+  }
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  for (char& c : text) {
+    if (c == '\n' || c == '\r') c = ';';
+  }
+  if (text.size() > kMaxChars) text = text.substr(0, kMaxChars) + "...";
+  return text;
+}
+
+std::uint32_t readU32(const std::vector<unsigned char>& bytes, std::size_t offset) {
+  std::uint32_t value = 0;
+  for (std::size_t k = 0; k < 4; ++k) value |= std::uint32_t{bytes[offset + k]} << (8 * k);
+  return value;
+}
+
+/// Checks the GLB container (header and chunk lengths) so that a truncated or
+/// corrupt file gets a message saying what is wrong; returns "" when it is sound.
+std::string glbContainerError(const std::vector<unsigned char>& bytes) {
+  const std::uint64_t size = bytes.size();
+  if (size < 12) return "truncated GLB: " + std::to_string(size) + " bytes, shorter than the 12-byte header";
+  const std::uint32_t version = readU32(bytes, 4);
+  if (version != 2) return "GLB version " + std::to_string(version) + " is not supported (only 2)";
+  const std::uint64_t length = readU32(bytes, 8);
+  if (length > size) {
+    return "truncated GLB: its header says " + std::to_string(length) + " bytes but the file has " +
+           std::to_string(size);
+  }
+  if (length < 20) return "GLB length " + std::to_string(length) + " leaves no room for the JSON chunk";
+  const std::uint64_t jsonLength = readU32(bytes, 12);
+  if (readU32(bytes, 16) != 0x4E4F534Au) return "the first GLB chunk is not the JSON chunk";
+  const std::uint64_t jsonEnd = 20 + jsonLength;
+  if (jsonEnd > length) {
+    return "GLB JSON chunk of " + std::to_string(jsonLength) + " bytes runs past the end of the " +
+           std::to_string(length) + "-byte file";
+  }
+  if (jsonEnd == length) return "";
+  if (jsonEnd + 8 > length) return "truncated GLB: it ends inside the BIN chunk header";
+  const std::uint64_t binLength = readU32(bytes, static_cast<std::size_t>(jsonEnd));
+  if (jsonEnd + 8 + binLength > length) {
+    return "GLB BIN chunk of " + std::to_string(binLength) + " bytes runs past the end of the " +
+           std::to_string(length) + "-byte file";
+  }
+  return "";
+}
+
+glm::dmat4 localTransform(const tinygltf::Node& node, const std::string& where) {
+  if (!node.matrix.empty()) {
+    if (node.matrix.size() != 16) throw Error(where + ": matrix must have 16 numbers");
+    glm::dmat4 m;
+    std::memcpy(glm::value_ptr(m), node.matrix.data(), sizeof(double) * 16);  // column-major
+    return m;
+  }
+  glm::dmat4 m(1.0);
+  if (!node.translation.empty()) {
+    if (node.translation.size() != 3) throw Error(where + ": translation must have 3 numbers");
+    m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+  }
+  if (!node.rotation.empty()) {
+    if (node.rotation.size() != 4) throw Error(where + ": rotation must have 4 numbers");
+    const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+    const double norm = glm::length(q);
+    if (!(norm > 0.0)) throw Error(where + ": rotation is not a valid quaternion");
+    m = m * glm::mat4_cast(q / norm);
+  }
+  if (!node.scale.empty()) {
+    if (node.scale.size() != 3) throw Error(where + ": scale must have 3 numbers");
+    m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+  }
+  return m;
+}
+
+/// Settings found in a node's extras, if it has any for Voxhap.
+struct NodeSettings {
+  std::string objectName;
+  ObjectSettings settings;
+};
+
+std::optional<NodeSettings> readNodeSettings(const tinygltf::Node& node,
+                                             const std::string& nodeName,
+                                             const std::string& where,
+                                             std::vector<std::string>& warnings) {
+  if (!node.extras.IsObject() || !node.extras.Has("voxhap")) return std::nullopt;
+  const tinygltf::Value& v = node.extras.Get("voxhap");
+  if (!v.IsObject()) throw Error(where + ": extras.voxhap must be an object");
+  NodeSettings result{nodeName, {}};
+  for (const std::string& key : v.Keys()) {
+    const tinygltf::Value& field = v.Get(key);
+    const std::string fieldWhere = where + ": extras.voxhap." + key;
+    if (key == "role") {
+      const std::string role = field.IsString() ? field.Get<std::string>() : std::string();
+      if (role == "static") {
+        result.settings.role = ObjectRole::Static;
+      } else if (role == "dynamic") {
+        result.settings.role = ObjectRole::Dynamic;
+      } else {
+        throw Error(fieldWhere + " must be \"static\" or \"dynamic\"");
+      }
+    } else if (key == "object") {
+      if (!field.IsString() || field.Get<std::string>().empty()) {
+        throw Error(fieldWhere + " must be a non-empty string");
+      }
+      result.objectName = field.Get<std::string>();
+    } else if (key == "density") {
+      const double density = field.IsNumber() ? field.GetNumberAsDouble() : -1.0;
+      if (!(density > 0.0) || !std::isfinite(density)) {
+        throw Error(fieldWhere + " must be a positive number (kg/m³)");
+      }
+      result.settings.densityKgPerM3 = density;
+    } else {
+      warnings.push_back(fieldWhere + " is not a Voxhap setting; ignored");
+    }
+  }
+  return result;
+}
+
+/// Reads glTF accessors after checking every offset against the buffers.
+class AccessorReader {
+public:
+  explicit AccessorReader(const tinygltf::Model& model) : model_(model) {}
+
+  /// Float VEC3 positions, every one finite.
+  std::vector<glm::vec3> positions(int accessorIndex, const std::string& where) const {
+    const View view = check(accessorIndex, where + ": POSITION");
+    if (view.accessor->componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
+        view.accessor->type != TINYGLTF_TYPE_VEC3) {
+      throw Error(view.where + " must be float VEC3");
+    }
+    std::vector<glm::vec3> out(view.accessor->count);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      std::memcpy(&out[i], view.data + i * view.stride, sizeof(glm::vec3));
+      for (int k = 0; k < 3; ++k) {
+        if (!std::isfinite(out[i][k])) {
+          throw Error(view.where + ": position " + std::to_string(i) + " is " +
+                      (std::isnan(out[i][k]) ? "NaN" : "infinite"));
+        }
+      }
+    }
+    return out;
+  }
+
+  /// Unsigned scalar indices, each below `vertexCount`.
+  std::vector<std::uint32_t> indices(int accessorIndex, std::size_t vertexCount,
+                                     const std::string& where) const {
+    const View view = check(accessorIndex, where + ": indices");
+    const int type = view.accessor->componentType;
+    if (view.accessor->type != TINYGLTF_TYPE_SCALAR ||
+        (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+      throw Error(view.where + " must be unsigned byte, short or int scalars");
+    }
+    std::vector<std::uint32_t> out(view.accessor->count);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const unsigned char* p = view.data + i * view.stride;
+      std::uint32_t index = 0;
+      if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+        index = *p;
+      } else if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+        std::uint16_t v;
+        std::memcpy(&v, p, sizeof v);
+        index = v;
+      } else {
+        std::memcpy(&index, p, sizeof index);
+      }
+      if (index >= vertexCount) {
+        throw Error(view.where + ": index " + std::to_string(index) + " at position " +
+                    std::to_string(i) + " is out of range (the primitive has " +
+                    std::to_string(vertexCount) + " vertices)");
+      }
+      out[i] = index;
+    }
+    return out;
+  }
+
+private:
+  struct View {
+    const tinygltf::Accessor* accessor;
+    const unsigned char* data;  // first element
+    std::size_t stride;         // bytes between elements
+    std::string where;
+  };
+
+  View check(int accessorIndex, const std::string& what) const {
+    if (accessorIndex < 0 || static_cast<std::size_t>(accessorIndex) >= model_.accessors.size()) {
+      throw Error(what + " names accessor " + std::to_string(accessorIndex) + ", which does not exist (" +
+                  std::to_string(model_.accessors.size()) + " accessors)");
+    }
+    const tinygltf::Accessor& a = model_.accessors[static_cast<std::size_t>(accessorIndex)];
+    const std::string where = what + " accessor " + std::to_string(accessorIndex);
+    if (a.sparse.isSparse) throw Error(where + ": sparse accessors are not supported");
+    if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model_.bufferViews.size()) {
+      throw Error(where + ": bufferView " + std::to_string(a.bufferView) + " does not exist");
+    }
+    const tinygltf::BufferView& bv = model_.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    const std::string viewWhere = where + " (bufferView " + std::to_string(a.bufferView) + ")";
+    if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= model_.buffers.size()) {
+      throw Error(viewWhere + ": buffer " + std::to_string(bv.buffer) + " does not exist");
+    }
+    const std::vector<unsigned char>& buffer = model_.buffers[static_cast<std::size_t>(bv.buffer)].data;
+    if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset) {
+      throw Error(viewWhere + ": bytes " + std::to_string(bv.byteOffset) + "+" +
+                  std::to_string(bv.byteLength) + " lie beyond buffer " + std::to_string(bv.buffer) +
+                  " of " + std::to_string(buffer.size()) + " bytes (missing or short buffer)");
+    }
+    const int componentBytes = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
+    const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
+    if (componentBytes <= 0 || components <= 0) throw Error(where + ": unknown component type or type");
+    const std::size_t elementBytes = static_cast<std::size_t>(componentBytes * components);
+    const std::size_t stride = bv.byteStride != 0 ? bv.byteStride : elementBytes;
+    if (stride < elementBytes) {
+      throw Error(viewWhere + ": byteStride " + std::to_string(stride) + " is smaller than an element (" +
+                  std::to_string(elementBytes) + " bytes)");
+    }
+    // count is bounded by the view's bytes first, so the products below cannot overflow
+    const bool fits = a.count == 0 ||
+                      (a.count <= bv.byteLength && a.byteOffset <= bv.byteLength &&
+                       (a.count - 1) * stride + elementBytes <= bv.byteLength - a.byteOffset);
+    if (!fits) {
+      throw Error(viewWhere + ": " + std::to_string(a.count) + " elements from offset " +
+                  std::to_string(a.byteOffset) + " do not fit in its " + std::to_string(bv.byteLength) +
+                  " bytes");
+    }
+    return {&a, buffer.data() + bv.byteOffset + a.byteOffset, stride, where};
+  }
+
+  const tinygltf::Model& model_;
+};
+
+/// Triangles of one primitive as vertex-index triples, by primitive mode.
+std::vector<glm::uvec3> assembleTriangles(const std::vector<std::uint32_t>& idx, int mode) {
+  std::vector<glm::uvec3> out;
+  const std::size_t n = idx.size();
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    out.reserve(n / 3);
+    for (std::size_t i = 0; i + 2 < n; i += 3) out.emplace_back(idx[i], idx[i + 1], idx[i + 2]);
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (std::size_t i = 0; i + 2 < n; ++i) {
+      if (i % 2 == 0) {
+        out.emplace_back(idx[i], idx[i + 1], idx[i + 2]);
+      } else {
+        out.emplace_back(idx[i + 1], idx[i], idx[i + 2]);
+      }
+    }
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    for (std::size_t i = 1; i + 1 < n; ++i) out.emplace_back(idx[0], idx[i], idx[i + 1]);
+  }
+  return out;
+}
+
+const char* modeName(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS:
+      return "points";
+    case TINYGLTF_MODE_LINE:
+      return "lines";
+    case TINYGLTF_MODE_LINE_LOOP:
+      return "line loop";
+    case TINYGLTF_MODE_LINE_STRIP:
+      return "line strip";
+    default:
+      return "unknown";
+  }
+}
+
+class SceneBuilder {
+public:
+  SceneBuilder(const tinygltf::Model& model, std::string fileName, const ProgressFn& progress)
+      : model_(model), file_(std::move(fileName)), reader_(model), progress_(progress) {
+    scene_.sourceName = file_;
+  }
+
+  Scene build() {
+    const std::vector<int> roots = rootNodes();
+    visited_.assign(model_.nodes.size(), false);
+    for (int root : roots) visit(root, glm::dmat4(1.0), std::nullopt, "scene", 0);
+    if (model_.scenes.empty()) {
+      // every node is reachable from a parentless one unless it sits in (or under) a cycle
+      for (std::size_t i = 0; i < visited_.size(); ++i) {
+        if (!visited_[i]) {
+          const std::string& name = model_.nodes[i].name;
+          throw Error(file_ + ": node " + quoted(name.empty() ? "node " + std::to_string(i) : name) +
+                      " is in or under a cycle of the node hierarchy");
+        }
+      }
+    }
+    if (scene_.triangleCount() == 0) {
+      // what was skipped is usually why; the exception is all the user gets to see
+      std::string why;
+      if (!scene_.warnings.empty()) {
+        std::string first = scene_.warnings.front();
+        if (first.rfind(file_ + ": ", 0) == 0) first.erase(0, file_.size() + 2);
+        const std::size_t n = scene_.warnings.size();
+        why = " (" + std::to_string(n) + (n == 1 ? " warning: " : " warnings, the first: ") + first + ")";
+      }
+      throw Error(file_ + ": the scene has no triangles" + why);
+    }
+    reportDuplicateNames();
+    for (const SceneObject& object : scene_.objects) reportTopology(object);
+    if (progress_) progress_(1.0);  // nodes outside the scene are never visited
+    return std::move(scene_);
+  }
+
+private:
+  std::vector<int> rootNodes() const {
+    if (!model_.scenes.empty()) {
+      const int chosen = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+      if (static_cast<std::size_t>(chosen) >= model_.scenes.size()) {
+        throw Error(file_ + ": default scene " + std::to_string(chosen) + " does not exist");
+      }
+      return model_.scenes[static_cast<std::size_t>(chosen)].nodes;
+    }
+    // no scenes: every node that is nobody's child is a root
+    std::vector<bool> isChild(model_.nodes.size(), false);
+    for (const tinygltf::Node& node : model_.nodes) {
+      for (int child : node.children) {
+        if (child >= 0 && static_cast<std::size_t>(child) < isChild.size()) {
+          isChild[static_cast<std::size_t>(child)] = true;
+        }
+      }
+    }
+    std::vector<int> roots;
+    for (std::size_t i = 0; i < isChild.size(); ++i) {
+      if (!isChild[i]) roots.push_back(static_cast<int>(i));
+    }
+    return roots;
+  }
+
+  void visit(int nodeIndex, const glm::dmat4& parentWorld, std::optional<NodeSettings> inherited,
+             const std::string& parentWhere, std::size_t depth) {
+    if (nodeIndex < 0 || static_cast<std::size_t>(nodeIndex) >= model_.nodes.size()) {
+      throw Error(file_ + ": " + parentWhere + " names node " + std::to_string(nodeIndex) +
+                  ", which does not exist (" + std::to_string(model_.nodes.size()) + " nodes)");
+    }
+    const std::size_t index = static_cast<std::size_t>(nodeIndex);
+    const tinygltf::Node& node = model_.nodes[index];
+    const std::string name = node.name.empty() ? "node " + std::to_string(nodeIndex) : node.name;
+    const std::string where = file_ + ": node " + quoted(name);
+    if (visited_[index]) {
+      throw Error(where + " appears twice in the node hierarchy (a cycle or a shared child)");
+    }
+    visited_[index] = true;
+    ++nodesDone_;
+    if (progress_ && !model_.nodes.empty()) {
+      progress_(static_cast<double>(nodesDone_) / static_cast<double>(model_.nodes.size()));
+    }
+
+    const glm::dmat4 world = parentWorld * localTransform(node, where);
+    if (std::optional<NodeSettings> own = readNodeSettings(node, name, where, scene_.warnings)) {
+      inherited = std::move(own);
+    }
+    if (node.mesh >= 0) addMeshNode(node, name, where, world, inherited);
+    if (!node.children.empty() && depth + 1 >= kMaxNodeDepth) {
+      throw Error(where + ": its children would be level " + std::to_string(depth + 2) +
+                  " of the node hierarchy, which may have at most " + std::to_string(kMaxNodeDepth) +
+                  " levels");
+    }
+    for (int child : node.children) visit(child, world, inherited, "node " + quoted(name), depth + 1);
+  }
+
+  void addMeshNode(const tinygltf::Node& node, const std::string& name, const std::string& where,
+                   const glm::dmat4& world, const std::optional<NodeSettings>& settings) {
+    if (static_cast<std::size_t>(node.mesh) >= model_.meshes.size()) {
+      throw Error(where + ": mesh " + std::to_string(node.mesh) + " does not exist");
+    }
+    const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(node.mesh)];
+    const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+
+    TriangleMesh out;
+    std::optional<glm::vec4> color;
+    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      const std::string primWhere = where + " primitive " + std::to_string(p);
+      const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        scene_.warnings.push_back(primWhere + ": " + modeName(mode) + " primitive skipped (not triangles)");
+        continue;
+      }
+      const auto position = prim.attributes.find("POSITION");
+      if (position == prim.attributes.end()) {
+        scene_.warnings.push_back(primWhere + ": no POSITION attribute; skipped");
+        continue;
+      }
+      const std::vector<glm::vec3> local = reader_.positions(position->second, primWhere);
+      std::vector<std::uint32_t> idx;
+      if (prim.indices >= 0) {
+        idx = reader_.indices(prim.indices, local.size(), primWhere);
+      } else {
+        idx.resize(local.size());
+        for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<std::uint32_t>(i);
+      }
+      if (mode == TINYGLTF_MODE_TRIANGLES && idx.size() % 3 != 0) {
+        scene_.warnings.push_back(primWhere + ": " + std::to_string(idx.size() % 3) +
+                                  " trailing indices do not make a triangle; ignored");
+      }
+      if (out.positionsWorld.size() + local.size() > std::numeric_limits<std::uint32_t>::max()) {
+        throw Error(primWhere + ": more than 2^32 vertices in one node");
+      }
+      const auto base = static_cast<std::uint32_t>(out.positionsWorld.size());
+      for (const glm::vec3& p0 : local) out.positionsWorld.emplace_back(world * glm::dvec4(p0, 1.0));
+      for (glm::uvec3 t : assembleTriangles(idx, mode)) {
+        if (mirrored) std::swap(t.y, t.z);
+        out.triangles.push_back(t + base);
+      }
+      const glm::vec4 primColor = materialColor(prim.material, primWhere);
+      if (!color) {
+        color = primColor;
+      } else if (*color != primColor) {
+        scene_.warnings.push_back(primWhere + ": its material colour differs from primitive 0's; "
+                                  "the part keeps primitive 0's colour");
+      }
+    }
+    for (const glm::vec3& p : out.positionsWorld) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        throw Error(where + ": its transform takes a position to infinity");
+      }
+    }
+    if (out.triangles.empty()) {
+      scene_.warnings.push_back(where + ": no triangles; skipped");
+      return;
+    }
+    Part part = makePart(name, color.value_or(glm::vec4(1.0f)), std::move(out));
+    if (part.degenerateTrianglesDropped > 0) {
+      scene_.warnings.push_back(where + ": " + std::to_string(part.degenerateTrianglesDropped) +
+                                " degenerate triangles dropped");
+    }
+    if (part.mesh.triangles.empty()) return;
+    objectFor(name, settings).parts.push_back(std::move(part));
+  }
+
+  glm::vec4 materialColor(int materialIndex, const std::string& where) const {
+    if (materialIndex < 0) return glm::vec4(1.0f);
+    if (static_cast<std::size_t>(materialIndex) >= model_.materials.size()) {
+      throw Error(where + ": material " + std::to_string(materialIndex) + " does not exist");
+    }
+    const std::vector<double>& f =
+        model_.materials[static_cast<std::size_t>(materialIndex)].pbrMetallicRoughness.baseColorFactor;
+    if (f.size() != 4) throw Error(where + ": baseColorFactor must have 4 numbers");
+    return glm::vec4(static_cast<float>(f[0]), static_cast<float>(f[1]), static_cast<float>(f[2]),
+                     static_cast<float>(f[3]));
+  }
+
+  SceneObject& objectFor(const std::string& nodeName, const std::optional<NodeSettings>& settings) {
+    if (settings) {
+      const auto found = namedObjects_.find(settings->objectName);
+      if (found != namedObjects_.end()) return scene_.objects[found->second];
+      namedObjects_.emplace(settings->objectName, scene_.objects.size());
+      scene_.objects.push_back({settings->objectName, settings->settings, {}});
+      return scene_.objects.back();
+    }
+    scene_.objects.push_back({nodeName, ObjectSettings{}, {}});
+    return scene_.objects.back();
+  }
+
+  /// Objects need unique names for `--move NAME`: later namesakes get " (2)", " (3)", ….
+  void reportDuplicateNames() {
+    std::map<std::string, int> seen;
+    std::size_t renamed = 0;
+    std::string names;
+    for (SceneObject& object : scene_.objects) {
+      const int n = ++seen[object.name];
+      if (n > 1) {
+        object.name += " (" + std::to_string(n) + ")";
+        if (++renamed <= 5) names += (renamed > 1 ? ", '" : "'") + object.name + "'";
+      }
+    }
+    if (renamed > 0) {
+      scene_.warnings.push_back(file_ + ": " + std::to_string(renamed) +
+                                " objects share a name with an earlier one and were numbered: " + names +
+                                (renamed > 5 ? ", ..." : ""));
+    }
+  }
+
+  void reportTopology(const SceneObject& object) {
+    for (const Part& part : object.parts) {
+      const MeshTopology& t = part.topology;
+      const std::string where = file_ + ": object " + quoted(object.name) + " part " + quoted(part.name);
+      if (!t.closed()) {
+        const glm::vec3 p = t.firstOpenEdgeWorld.value_or(glm::vec3(0.0f));
+        std::ostringstream s;
+        s << where << " is open: " << t.boundaryEdges << " boundary and " << t.nonManifoldEdges
+          << " non-manifold edges, the first near (" << p.x << ", " << p.y << ", " << p.z << ") m";
+        scene_.warnings.push_back(s.str());
+      }
+      if (!t.consistentlyOriented()) {
+        scene_.warnings.push_back(where + " is not consistently oriented: " +
+                                  std::to_string(t.misorientedEdges) + " edges join flipped triangles");
+      }
+    }
+  }
+
+  const tinygltf::Model& model_;
+  std::string file_;
+  AccessorReader reader_;
+  const ProgressFn& progress_;
+  Scene scene_;
+  std::vector<bool> visited_;
+  std::size_t nodesDone_ = 0;
+  std::map<std::string, std::size_t> namedObjects_;
+};
+
+}  // namespace
+
+Scene loadGltfScene(const fs::path& file, const ProgressFn& progress) {
+  const std::string fileName = file.string();
+  std::string readError;
+  const std::vector<unsigned char> bytes = readRegularFile(file, readError);
+  if (!readError.empty()) throw Error(fileName + ": " + readError);
+  if (bytes.empty()) throw Error(fileName + ": the file is empty");
+
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(&skipImage, nullptr);
+  std::string baseDir = file.parent_path().string();
+  loader.SetFsCallbacks({&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &baseDir});
+  tinygltf::Model model;
+  std::string err;
+  std::string warn;
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  bool ok = false;
+  auto checkJsonDepth = [&](const unsigned char* json, std::size_t size) {
+    if (jsonNestingDepth(json, size) > kMaxJsonDepth) {
+      throw Error(fileName + ": JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    }
+  };
+  if (binary) {
+    const std::string containerError = glbContainerError(bytes);
+    if (!containerError.empty()) throw Error(fileName + ": " + containerError);
+    checkJsonDepth(bytes.data() + 20, readU32(bytes, 12));
+    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                     static_cast<unsigned int>(bytes.size()), baseDir);
+  } else {
+    std::size_t first = bytes.size() >= 3 && std::memcmp(bytes.data(), "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+    while (first < bytes.size() && std::isspace(bytes[first])) ++first;
+    const bool looksLikeJson = first < bytes.size() && bytes[first] == '{';
+    if (!looksLikeJson) {
+      throw Error(fileName + ": not a glTF file (neither a GLB header nor a JSON object)");
+    }
+    checkJsonDepth(bytes.data(), bytes.size());
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                    static_cast<unsigned int>(bytes.size()), baseDir);
+  }
+  if (!ok) {
+    throw Error(fileName + ": not valid glTF" + std::string(binary ? " binary" : "") + ": " +
+                oneLine(err.empty() ? std::string("unknown tinygltf error") : err));
+  }
+  SceneBuilder builder(model, fileName, progress);
+  Scene scene = builder.build();
+  if (!warn.empty()) scene.warnings.insert(scene.warnings.begin(), fileName + ": " + oneLine(warn));
+  return scene;
+}
+
+}  // namespace voxhap

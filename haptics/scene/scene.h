@@ -1,0 +1,104 @@
+#pragma once
+/// The engine's scene: what a glTF file (or a built-in generator) describes,
+/// baked into world coordinates and grouped into logical objects.
+///
+/// A `Scene` is built at load time and read-only afterwards. Positions are in
+/// metres in the world frame (node transforms already applied); the voxmap and
+/// pointshell of an object are later built in that same frame, which becomes the
+/// object's local frame at load time (DESIGN §3).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace voxhap {
+
+/// An indexed triangle mesh in world coordinates (metres).
+struct TriangleMesh {
+  std::vector<glm::vec3> positionsWorld;  ///< vertex positions, metres, world frame
+  std::vector<glm::uvec3> triangles;      ///< counter-clockwise seen from outside
+};
+
+/// What the scene file says an object does in the simulation.
+enum class ObjectRole : std::uint8_t {
+  Static,   ///< fixed in the world; voxelized, never moves
+  Dynamic,  ///< may be grabbed and moved by a user
+};
+
+/// Name of a role as written in glTF extras and printed by the CLI.
+const char* roleName(ObjectRole role);
+
+/// Edge-level topology of a mesh after welding vertices with equal positions.
+struct MeshTopology {
+  std::uint64_t boundaryEdges = 0;     ///< edges used by exactly one triangle
+  std::uint64_t nonManifoldEdges = 0;  ///< edges used by three or more triangles
+  std::uint64_t misorientedEdges = 0;  ///< two-triangle edges walked the same way by both
+  /// A point on the first boundary or non-manifold edge found, for messages (world, m).
+  std::optional<glm::vec3> firstOpenEdgeWorld;
+
+  /// Every edge is shared by exactly two triangles.
+  bool closed() const { return boundaryEdges == 0 && nonManifoldEdges == 0; }
+  /// Every shared edge is walked in opposite directions by its two triangles.
+  bool consistentlyOriented() const { return misorientedEdges == 0; }
+};
+
+/// One glTF mesh node: a part of a logical object, with its own colour.
+struct Part {
+  std::string name;          ///< node name (or "node N" when the node has none)
+  glm::vec4 baseColor{1.0f};  ///< linear RGBA, from the material's baseColorFactor
+  TriangleMesh mesh;          ///< world frame; degenerate triangles already dropped
+  std::uint64_t degenerateTrianglesDropped = 0;
+  MeshTopology topology;      ///< of `mesh`, computed by makePart
+};
+
+/// Builds a part: drops degenerate triangles (repeated vertex or zero area),
+/// counts them, and computes the topology. Every Part is made through here.
+Part makePart(std::string name, glm::vec4 baseColor, TriangleMesh mesh);
+
+/// Axis-aligned bounding box, metres, world frame. Empty when min > max.
+struct Bounds {
+  glm::dvec3 min{1e300};
+  glm::dvec3 max{-1e300};
+
+  bool empty() const { return min.x > max.x; }
+  void add(const glm::dvec3& p);
+  void add(const Bounds& b);
+  glm::dvec3 extent() const { return empty() ? glm::dvec3(0.0) : max - min; }
+};
+
+/// Per-object settings read from a node's `extras.voxhap` (DESIGN §5).
+struct ObjectSettings {
+  ObjectRole role = ObjectRole::Static;
+  std::optional<double> densityKgPerM3;  ///< for mass and inertia; engine default if unset
+};
+
+/// A logical object: one or more parts that collide as one rigid body.
+struct SceneObject {
+  std::string name;
+  ObjectSettings settings;
+  std::vector<Part> parts;
+
+  std::uint64_t triangleCount() const;
+  Bounds bounds() const;
+  bool closed() const;                ///< every part closed
+  bool consistentlyOriented() const;  ///< every part consistently oriented
+};
+
+/// A whole scene: its objects and what the loader had to say about it.
+struct Scene {
+  std::string sourceName;            ///< file path or generator name, for messages
+  std::vector<SceneObject> objects;
+  std::vector<std::string> warnings;  ///< one line each; nothing the loader skipped is silent
+
+  std::uint64_t triangleCount() const;
+  std::uint64_t triangleCount(ObjectRole role) const;
+  Bounds bounds() const;
+  /// The object with this name, or nullptr.
+  const SceneObject* find(const std::string& name) const;
+};
+
+}  // namespace voxhap

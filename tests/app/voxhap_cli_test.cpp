@@ -1,0 +1,224 @@
+// Runs the real `voxhap` executable and checks exit codes, stdout and stderr.
+
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exitCode;
+  std::string out;
+  std::string err;
+};
+
+std::string shellQuote(const std::string& s) {
+  std::string q(1, '\'');
+  for (char c : s) {
+    if (c == '\'') {
+      q.append("'\\''");
+    } else {
+      q.push_back(c);
+    }
+  }
+  q.push_back('\'');
+  return q;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class VoxhapCli : public ::testing::Test {
+protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("voxhap-cli-" + std::string(info->name()) + "-" +
+                                        std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  /// Runs voxhap with a private cache folder; stdin is empty.
+  CliRun voxhap(const std::vector<std::string>& args) const {
+    std::string command = "cd " + shellQuote(dir_.string()) + " && VOXHAP_CACHE_DIR=" +
+                          shellQuote((dir_ / "cache").string()) + " " + shellQuote(VOXHAP_EXE);
+    for (const std::string& a : args) {
+      command.push_back(' ');
+      command.append(shellQuote(a));
+    }
+    command += " </dev/null >out.txt 2>err.txt";
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "out.txt"), slurp(dir_ / "err.txt")};
+  }
+
+  static std::string asset(const std::string& name) {
+    return (fs::path(VOXHAP_SOURCE_DIR) / "assets" / name).string();
+  }
+
+  fs::path dir_;
+};
+
+int lineCount(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+TEST_F(VoxhapCli, HelpListsOnlyWorkingCommandsAndExitsZero) {
+  const CliRun r = voxhap({"--help"});
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.out.find("scene"), std::string::npos);
+  EXPECT_NE(r.out.find("demo"), std::string::npos);
+  EXPECT_EQ(r.out.find("simulate"), std::string::npos);
+}
+
+TEST_F(VoxhapCli, EveryCommandHasHelp) {
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"scene", "--help"}, {"scene", "info", "--help"}, {"scene", "generate", "--help"}, {"demo", "--help"}}) {
+    const CliRun r = voxhap(args);
+    EXPECT_EQ(r.exitCode, 0) << args[0];
+    EXPECT_NE(r.out.find("Usage: voxhap"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Examples"), std::string::npos) << r.out;
+  }
+}
+
+TEST_F(VoxhapCli, UsageMistakesExitTwoWithOneLine) {
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {}, {"fly"}, {"scene", "info"}, {"scene", "info", "a", "b"}, {"scene", "info", "--bogus", "x"},
+           {"scene", "generate", "landing-gear", "--seed", "-3"}}) {
+    const CliRun r = voxhap(args);
+    EXPECT_EQ(r.exitCode, 2) << (args.empty() ? "" : args[0]);
+    if (!args.empty()) {
+      EXPECT_EQ(lineCount(r.err), 1) << r.err;
+      EXPECT_EQ(r.err.rfind("voxhap: error: ", 0), 0u) << r.err;
+    }
+  }
+}
+
+TEST_F(VoxhapCli, MissingFileExitsOneNamingIt) {
+  const CliRun r = voxhap({"scene", "info", "no-such-scene.glb"});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("no-such-scene.glb"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+TEST_F(VoxhapCli, BadFileExitsOneWithOneLine) {
+  std::ofstream(dir_ / "junk.glb") << "this is not a glTF file";
+  const CliRun r = voxhap({"scene", "info", "junk.glb"});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("junk.glb"), std::string::npos);
+  EXPECT_NE(r.err.find("not a glTF file"), std::string::npos) << r.err;
+}
+
+TEST_F(VoxhapCli, SceneInfoJsonIsOneDocumentWithTheFigures) {
+  const CliRun r = voxhap({"scene", "info", asset("ball-and-socket.glb"), "--json"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);  // throws unless exactly one document
+  EXPECT_EQ(j["objects_count"], 2);
+  EXPECT_EQ(j["dynamic_triangles"], 2048);
+  bool sawBall = false;
+  for (const auto& object : j["objects"]) {
+    EXPECT_TRUE(object["closed"].get<bool>()) << object["name"];
+    EXPECT_TRUE(object["consistently_oriented"].get<bool>()) << object["name"];
+    if (object["name"] == "ball") {
+      sawBall = true;
+      EXPECT_EQ(object["role"], "dynamic");
+      EXPECT_NEAR(object["bounds_m"]["extent"][0].get<double>(), 0.050, 1e-4);
+    }
+  }
+  EXPECT_TRUE(sawBall);
+}
+
+TEST_F(VoxhapCli, BuiltinNameResolvesToTheCommittedAsset) {
+  const CliRun byName = voxhap({"scene", "info", "peg-in-hole", "--json"});
+  const CliRun byFile = voxhap({"scene", "info", asset("peg-in-hole.glb"), "--json"});
+  ASSERT_EQ(byName.exitCode, 0) << byName.err;
+  ASSERT_EQ(byFile.exitCode, 0) << byFile.err;
+  EXPECT_EQ(nlohmann::json::parse(byName.out)["objects"], nlohmann::json::parse(byFile.out)["objects"]);
+}
+
+TEST_F(VoxhapCli, GeneratedSmallScenesEqualTheCommittedAssets) {
+  for (const std::string name : {"ball-and-socket", "peg-in-hole"}) {
+    const CliRun r = voxhap({"scene", "generate", name, "-o", "out.glb"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(slurp(dir_ / "out.glb"), slurp(asset(name + ".glb")))
+        << name << ": regenerate the asset with `voxhap scene generate " << name << " -o assets/" << name << ".glb`";
+  }
+}
+
+TEST_F(VoxhapCli, UnknownBuiltinSceneListsTheKnownOnes) {
+  const CliRun r = voxhap({"scene", "generate", "space-station"});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("landing-gear"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "space-station.glb"));
+}
+
+TEST_F(VoxhapCli, WarningsGoToStderrAndQuietSilencesThem) {
+  // a glTF whose only mesh is open: one triangle
+  std::ofstream(dir_ / "open.gltf") << R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],
+    "nodes":[{"name":"sheet","mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+    "bufferViews":[{"buffer":0,"byteLength":36}],
+    "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+  const CliRun normal = voxhap({"scene", "info", "open.gltf", "--json"});
+  ASSERT_EQ(normal.exitCode, 0) << normal.err;
+  EXPECT_NE(normal.err.find("voxhap: warning: "), std::string::npos);
+  EXPECT_NE(normal.err.find("'sheet' is open"), std::string::npos) << normal.err;
+  EXPECT_FALSE(nlohmann::json::parse(normal.out)["objects"][0]["closed"].get<bool>());
+  const CliRun quiet = voxhap({"scene", "info", "open.gltf", "-q"});
+  EXPECT_EQ(quiet.exitCode, 0);
+  EXPECT_TRUE(quiet.err.empty()) << quiet.err;
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(VoxhapCli, LandingGearIsGeneratedOnceThenCachedWithTheIssueFigures) {
+  const CliRun first = voxhap({"scene", "info", "landing-gear", "--json"});
+  ASSERT_EQ(first.exitCode, 0) << first.err;
+  const nlohmann::json j = nlohmann::json::parse(first.out);
+  const double staticTriangles = j["static_triangles"].get<double>();
+  EXPECT_NEAR(staticTriangles, 2.7e6, 0.05 * 2.7e6);
+  const auto& extent = j["bounds_m"]["extent"];
+  EXPECT_NEAR(extent[0].get<double>(), 4.1, 0.03 * 4.1);
+  EXPECT_NEAR(extent[1].get<double>(), 1.9, 0.03 * 1.9);
+  EXPECT_NEAR(extent[2].get<double>(), 4.8, 0.03 * 4.8);
+  int dynamicObjects = 0;
+  for (const auto& object : j["objects"]) {
+    EXPECT_TRUE(object["closed"].get<bool>()) << object["name"];
+    EXPECT_TRUE(object["consistently_oriented"].get<bool>()) << object["name"];
+    if (object["role"] != "dynamic") continue;
+    ++dynamicObjects;
+    EXPECT_EQ(object["name"], "actuator");
+    EXPECT_NEAR(object["triangles"].get<double>(), 40000.0, 2000.0);
+    EXPECT_GT(object["parts"].size(), 1u);
+    std::vector<double> e;
+    for (const auto& v : object["bounds_m"]["extent"]) e.push_back(v.get<double>());
+    std::sort(e.begin(), e.end());
+    EXPECT_NEAR(e[2], 0.9, 0.05 * 0.9);
+    EXPECT_NEAR(e[1], 0.2, 0.05 * 0.2);
+    EXPECT_NEAR(e[0], 0.2, 0.05 * 0.2);
+  }
+  EXPECT_EQ(dynamicObjects, 1);
+
+  size_t cachedFiles = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir_ / "cache")) cachedFiles += entry.is_regular_file();
+  EXPECT_EQ(cachedFiles, 1u);
+  const CliRun second = voxhap({"scene", "info", "landing-gear", "--json", "-v"});
+  ASSERT_EQ(second.exitCode, 0) << second.err;
+  EXPECT_EQ(second.err.find("generated"), std::string::npos) << "the second run must use the cache";
+  EXPECT_EQ(nlohmann::json::parse(second.out)["objects"], j["objects"]);
+}
+
+}  // namespace

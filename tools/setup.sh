@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Voxhap set-up: installs the Debian 12 packages that are missing, configures and
+# builds, then runs the demo or the whole test suite. Safe to run again: a second
+# run installs nothing and rebuilds only what changed.
+#
+#   bash tools/setup.sh demo [ARGS…]   build (Release) and run `voxhap demo ARGS…`
+#   bash tools/setup.sh test           build and run every test in Release, then
+#                                      again under AddressSanitizer + UBSan
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libglm-dev libtinygltf-dev nlohmann-json3-dev libembree-dev libopenmesh-dev
+  libglfw3-dev libgl-dev libhidapi-dev libusb-1.0-0-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  xvfb xauth libgl1-mesa-dri
+)
+
+say() { printf 'setup: %s\n' "$*" >&2; }
+
+as_root() {
+  if [ "$(id -u)" -eq 0 ]; then
+    "$@"
+  elif command -v sudo >/dev/null 2>&1; then
+    sudo "$@"
+  else
+    say "need root to install packages: run as root or install sudo"
+    exit 1
+  fi
+}
+
+install_missing() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    say "all ${#packages[@]} packages present"
+    return
+  fi
+  say "installing ${missing[*]}"
+  as_root apt-get update -qq
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+# configure once per preset; later builds re-run CMake by themselves when needed
+build() {
+  local preset=$1
+  if [ ! -f "build/$preset/CMakeCache.txt" ]; then
+    cmake --preset "$preset"
+  fi
+  cmake --build --preset "$preset" -j "$(nproc)"
+}
+
+case "${1:-}" in
+  demo)
+    shift
+    install_missing
+    build release
+    exec build/release/app/voxhap demo "$@"
+    ;;
+  test)
+    install_missing
+    build release
+    ctest --preset release
+    build asan
+    ctest --preset asan
+    say "all tests passed (Release and ASan+UBSan)"
+    ;;
+  *)
+    echo "usage: bash tools/setup.sh demo [ARGS...] | test" >&2
+    exit 2
+    ;;
+esac
