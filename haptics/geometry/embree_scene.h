@@ -1,0 +1,64 @@
+#pragma once
+/// Exact geometric queries on triangle meshes through Embree: every crossing of a
+/// ray (for inside/outside parity) and the closest surface point (for pointshell
+/// normals and for ground-truth distances in tests). Built once, then queried from
+/// any number of threads; never used in the 1 kHz frame.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "haptics/scene/scene.h"
+
+namespace voxhap {
+
+/// One crossing of a ray with a triangle.
+struct RayCrossing {
+  double t;                ///< distance along the (unit) ray from its origin, m
+  std::uint32_t part;      ///< index of the mesh in the scene's part list
+  std::uint32_t triangle;  ///< index of the triangle in that mesh
+};
+
+/// The surface point nearest to a query point.
+struct ClosestSurfacePoint {
+  glm::dvec3 point;        ///< on the triangle, same frame as the meshes, m
+  double distanceM;        ///< from the query point
+  std::uint32_t part;
+  std::uint32_t triangle;
+  glm::dvec3 faceNormal;   ///< unit outward normal of that triangle
+};
+
+class EmbreeScene {
+public:
+  /// Builds a scene of the given meshes (kept by reference: they must outlive it).
+  /// Throws voxhap::Error when Embree fails.
+  explicit EmbreeScene(std::span<const TriangleMesh* const> meshes);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  /// Appends to `out` every crossing of the ray from `origin` along unit `direction`
+  /// with t in [0, tMaxM], each triangle once, in no particular order.
+  void allCrossings(const glm::dvec3& origin, const glm::dvec3& direction, double tMaxM,
+                    std::vector<RayCrossing>& out) const;
+
+  /// The closest surface point within `maxDistanceM` of `point`, if any.
+  std::optional<ClosestSurfacePoint> closestPoint(const glm::dvec3& point, double maxDistanceM) const;
+
+private:
+  void release();
+
+  std::vector<const TriangleMesh*> meshes_;
+  void* device_ = nullptr;  // RTCDevice; opaque here so that users need no Embree headers
+  void* scene_ = nullptr;   // RTCScene
+};
+
+/// The point of triangle (a, b, c) closest to `p` (Ericson, Real-Time Collision
+/// Detection, §5.1.5).
+glm::dvec3 closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                  const glm::dvec3& c);
+
+}  // namespace voxhap

@@ -1,0 +1,57 @@
+#include "haptics/geometry/embree_scene.h"
+
+#include <gtest/gtest.h>
+
+#include "haptics/geometry/mesh_builder.h"
+
+namespace voxhap {
+namespace {
+
+TriangleMesh unitCube() {
+  TriangleMesh m;
+  appendBox(m, glm::dmat4(1.0), glm::dvec3(0.5));
+  return m;
+}
+
+TEST(EmbreeScene, RayThroughACubeCrossesTwiceAtTheFaces) {
+  const TriangleMesh cube = unitCube();
+  const TriangleMesh* meshes[] = {&cube};
+  const EmbreeScene scene(meshes);
+  std::vector<RayCrossing> hits;
+  scene.allCrossings({-2.0, 0.1, 0.2}, {1, 0, 0}, 10.0, hits);
+  ASSERT_EQ(hits.size(), 2u);
+  std::sort(hits.begin(), hits.end(), [](auto& a, auto& b) { return a.t < b.t; });
+  EXPECT_NEAR(hits[0].t, 1.5, 1e-6);
+  EXPECT_NEAR(hits[1].t, 2.5, 1e-6);
+  hits.clear();
+  scene.allCrossings({-2.0, 0.7, 0.2}, {1, 0, 0}, 10.0, hits);
+  EXPECT_TRUE(hits.empty());
+}
+
+TEST(EmbreeScene, ClosestPointGivesExactDistanceAndOutwardNormal) {
+  const TriangleMesh cube = unitCube();
+  const TriangleMesh* meshes[] = {&cube};
+  const EmbreeScene scene(meshes);
+  const auto face = scene.closestPoint({2.0, 0.1, -0.2}, 10.0);
+  ASSERT_TRUE(face);
+  EXPECT_NEAR(face->distanceM, 1.5, 1e-6);
+  EXPECT_NEAR(face->faceNormal.x, 1.0, 1e-12);
+  const auto corner = scene.closestPoint({1.5, 1.5, 1.5}, 10.0);
+  ASSERT_TRUE(corner);
+  EXPECT_NEAR(corner->distanceM, std::sqrt(3.0), 1e-6);
+  EXPECT_FALSE(scene.closestPoint({3.0, 0.0, 0.0}, 1.0));  // beyond the search radius
+}
+
+TEST(EmbreeScene, ClosestPointOnTriangleRegions) {
+  const glm::dvec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const glm::dvec3 inside = closestPointOnTriangle({0.2, 0.2, 5}, a, b, c);
+  EXPECT_NEAR(glm::length(inside - glm::dvec3(0.2, 0.2, 0)), 0.0, 1e-15);
+  EXPECT_EQ(closestPointOnTriangle({-1, -1, 0}, a, b, c), a);
+  EXPECT_EQ(closestPointOnTriangle({0.5, -1, 0}, a, b, c), glm::dvec3(0.5, 0, 0));
+  const glm::dvec3 onHypotenuse = closestPointOnTriangle({1, 1, 0}, a, b, c);
+  EXPECT_NEAR(onHypotenuse.x, 0.5, 1e-12);
+  EXPECT_NEAR(onHypotenuse.y, 0.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace voxhap
