@@ -1,0 +1,112 @@
+#include "haptics/pointshell/pointshell.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "haptics/core/error.h"
+#include "haptics/core/parallel.h"
+#include "haptics/geometry/embree_scene.h"
+#include "haptics/voxel/feature_rasterizer.h"
+#include "haptics/voxel/voxelizer.h"
+
+namespace voxhap {
+
+std::size_t Pointshell::count(PointFeature feature) const {
+  return static_cast<std::size_t>(std::count(features.begin(), features.end(), feature));
+}
+
+double Pointshell::radiusAbout(const glm::dvec3& centreLocal) const {
+  double radius = 0.0;
+  for (const glm::vec3& p : positionsLocal) radius = std::max(radius, glm::length(glm::dvec3(p) - centreLocal));
+  return radius;
+}
+
+Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::span<const MeshFeatures> features,
+                           const PointshellOptions& options, const ProgressFn& progress) {
+  const double s = options.pointSpacingM;
+  if (!(s > 0.0) || !std::isfinite(s)) {
+    throw Error("point spacing must be a positive number of metres, not " + std::to_string(s));
+  }
+  Bounds bounds;
+  for (const TriangleMesh* mesh : meshes) {
+    for (const glm::vec3& p : mesh->positionsWorld) bounds.add(glm::dvec3(p));
+  }
+  if (bounds.empty()) throw Error("no triangles to make a pointshell of");
+  const VoxelGrid grid = gridAround(bounds, s, 1);
+  std::vector<FeatureGeometry> geometry;
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    geometry.push_back({meshes[i], i < features.size() ? &features[i] : nullptr});
+  }
+  auto stage = [&](double begin, double end) -> ProgressFn {
+    if (!progress) return {};
+    return [&progress, begin, end](double f) { progress(begin + (end - begin) * f); };
+  };
+  const HyperchunkBlocks<std::uint8_t> bits = rasterizeFeatures(grid, geometry, options.threads, stage(0.0, 0.3));
+
+  // the chunks holding surface voxels, in tree order (hyperchunk, then chunk in hyperchunk)
+  struct ChunkRef {
+    glm::ivec3 ijkChunk;
+    const std::uint8_t* bits;
+    std::uint32_t points;
+  };
+  std::vector<ChunkRef> chunks;
+  const glm::ivec3 dims = grid.dimsHyper;
+  for (int hz = 0; hz < dims.z; ++hz) {
+    for (int hy = 0; hy < dims.y; ++hy) {
+      for (int hx = 0; hx < dims.x; ++hx) {
+        if (!bits.hyperHasBlocks({hx, hy, hz})) continue;
+        for (std::uint32_t c = 0; c < kChunksPerHyper; ++c) {
+          const glm::ivec3 ijkChunk = glm::ivec3(hx, hy, hz) * kHyperEdgeChunks +
+                                      glm::ivec3(static_cast<int>(c & 7u), static_cast<int>((c >> 3) & 7u), static_cast<int>(c >> 6));
+          const auto* block = bits.find(ijkChunk);
+          if (!block) continue;
+          const auto points = static_cast<std::uint32_t>(
+              std::count_if(block->begin(), block->end(), [](std::uint8_t b) { return (b & kSurfaceBit) != 0; }));
+          if (points > 0) chunks.push_back({ijkChunk, block->data(), points});
+        }
+      }
+    }
+  }
+
+  Pointshell shell;
+  shell.pointSpacingM = s;
+  shell.chunkBegin.push_back(0);
+  for (const ChunkRef& chunk : chunks) shell.chunkBegin.push_back(shell.chunkBegin.back() + chunk.points);
+  const std::size_t total = shell.chunkBegin.back();
+  shell.positionsLocal.resize(total);
+  shell.normalsLocal.resize(total);
+  shell.features.resize(total);
+  shell.chunkCentroidsLocal.resize(chunks.size());
+
+  const EmbreeScene scene(meshes);
+  parallelFor(
+      chunks.size(), options.threads,
+      [&](std::size_t c) {
+        std::uint32_t at = shell.chunkBegin[c];
+        glm::dvec3 sum(0.0);
+        for (int i = 0; i < kVoxelsPerChunk; ++i) {
+          const std::uint8_t b = chunks[c].bits[i];
+          if (!(b & kSurfaceBit)) continue;
+          const glm::ivec3 v = chunks[c].ijkChunk * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
+          const glm::dvec3 centre = grid.voxelCentre(v);
+          // a surface voxel's centre is within half its diagonal of the surface
+          const auto nearest = scene.closestPoint(centre, s);
+          const glm::dvec3 normal = nearest ? nearest->faceNormal : glm::dvec3(0.0, 0.0, 1.0);
+          const glm::dvec3 position = centre + options.displacementM * normal;
+          shell.positionsLocal[at] = glm::vec3(position);
+          shell.normalsLocal[at] = glm::vec3(normal);
+          shell.features[at] = (b & kVertexBit) ? PointFeature::Vertex
+                               : (b & kEdgeBit) ? PointFeature::Edge
+                                                : PointFeature::Surface;
+          sum += position;
+          ++at;
+        }
+        shell.chunkCentroidsLocal[c] = glm::vec3(sum / static_cast<double>(chunks[c].points));
+      },
+      stage(0.3, 1.0));
+  return shell;
+}
+
+}  // namespace voxhap
