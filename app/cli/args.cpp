@@ -1,6 +1,7 @@
 #include "app/cli/args.h"
 
 #include <charconv>
+#include <cmath>
 
 namespace voxhap::cli {
 
@@ -77,6 +78,30 @@ std::uint64_t parseUnsigned(const std::string& text, const std::string& optionNa
     throw UsageError("--" + optionName + " wants a whole number from 0 to 18446744073709551615, not '" +
                      text + "'");
   }
+  return value;
+}
+
+double parseLengthM(const std::string& text, const std::string& optionName, LengthSign sign) {
+  const std::string example = sign == LengthSign::Positive ? "0.35mm, 2.5 mm or 0.00035 (metres)"
+                                                           : "0.012, 12mm or -3.5 mm";
+  auto fail = [&](const std::string& why) -> double {
+    throw UsageError("--" + optionName + " wants " + why + " such as " + example + ", not '" + text + "'");
+  };
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (text.empty() || ec != std::errc()) return fail("a length");
+  std::string unit(ptr, end);
+  unit.erase(0, unit.find_first_not_of(' '));
+  double scale = 1.0;
+  if (unit == "mm") {
+    scale = 1e-3;
+  } else if (unit != "m" && !unit.empty()) {
+    return fail("a length in m or mm");
+  }
+  value *= scale;
+  if (!std::isfinite(value)) return fail("a finite length");
+  if (sign == LengthSign::Positive && !(value > 0.0)) return fail("a positive length");
   return value;
 }
 

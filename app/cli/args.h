@@ -51,4 +51,13 @@ ParsedArgs parseArgs(const std::vector<std::string>& args, const std::vector<Opt
 /// Throws UsageError on anything else (sign, fraction, junk, overflow).
 std::uint64_t parseUnsigned(const std::string& text, const std::string& optionName);
 
+/// Whether parseLengthM accepts zero and negative lengths.
+enum class LengthSign { Positive, Any };
+
+/// Parses a length in metres for the option named in messages: a decimal number,
+/// optionally followed (spaces allowed) by "mm" or "m"; no unit means metres. So
+/// "0.35mm", "2.5 mm", "0.00035m" and "0.00035" are all accepted. Throws UsageError
+/// on anything else, on NaN or infinity, and on a length ≤ 0 unless `sign` is Any.
+double parseLengthM(const std::string& text, const std::string& optionName, LengthSign sign = LengthSign::Positive);
+
 }  // namespace voxhap::cli

@@ -89,7 +89,7 @@ Command voxhapCommands() {
       "Examples:\n"
       "  voxhap demo\n"
       "  voxhap scene info assets/ball-and-socket.glb --json";
-  root.subcommands = {sceneCommand(), demoCommand()};
+  root.subcommands = {sceneCommand(), voxelizeCommand(), simulateCommand(), demoCommand()};
   return root;
 }
 

@@ -7,6 +7,10 @@ namespace voxhap::cli {
 
 /// `voxhap scene info|generate`.
 Command sceneCommand();
+/// `voxhap simulate`: the headless 1 kHz simulation driven by motion scripts.
+Command simulateCommand();
+/// `voxhap voxelize`: one object's or the static environment's voxmap, Table 1 figures.
+Command voxelizeCommand();
 /// `voxhap demo`: the main job on the built-in default scene.
 Command demoCommand();
 

@@ -2,16 +2,77 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
 #include "haptics/core/error.h"
 #include "haptics/core/parallel.h"
 #include "haptics/geometry/embree_scene.h"
+#include "haptics/geometry/pseudo_normals.h"
 #include "haptics/voxel/feature_rasterizer.h"
 #include "haptics/voxel/voxelizer.h"
 
 namespace voxhap {
+namespace {
+
+/// A closest point this close to an edge or vertex (in voxels) takes its pseudo-normal.
+constexpr double kFeatureTolerance = 1e-6;
+
+/// Normals of the feature vertices and feature edges, by the voxels they pass through:
+/// a vertex or edge point pushes along its feature's normal, the same at every corner of
+/// a box whatever the lattice, rather than along the normal of whichever face lies
+/// nearest to its voxel's centre.
+class FeatureNormals {
+public:
+  FeatureNormals(const VoxelGrid& grid, std::span<const MeshFeatures> features, const PseudoNormals& normals)
+      : grid_(grid) {
+    for (std::size_t part = 0; part < features.size(); ++part) {
+      for (const glm::vec3& v : features[part].featureVertices) {
+        if (const auto n = normals.vertexNormal(part, v)) add(vertices_, grid.voxelOf(glm::dvec3(v)), *n);
+      }
+      for (const auto& [a, b] : features[part].featureEdges) {
+        const auto n = normals.edgeNormal(part, a, b);
+        if (!n) continue;
+        const glm::dvec3 from(a);
+        const glm::dvec3 along = glm::dvec3(b) - from;
+        const int steps = 1 + static_cast<int>(std::ceil(4.0 * glm::length(along) / grid.voxelSizeM));
+        std::uint64_t last = ~std::uint64_t{0};
+        for (int k = 0; k <= steps; ++k) {
+          const glm::ivec3 v = grid.voxelOf(from + along * (static_cast<double>(k) / steps));
+          if (!grid.containsVoxel(v) || key(v) == last) continue;
+          last = key(v);
+          add(edges_, v, *n);
+        }
+      }
+    }
+  }
+
+  /// The normal of the point of voxel `v` labelled `feature`, if its feature was found.
+  std::optional<glm::dvec3> normalOf(const glm::ivec3& v, PointFeature feature) const {
+    const auto& map = feature == PointFeature::Vertex ? vertices_ : edges_;
+    if (feature == PointFeature::Surface || !grid_.containsVoxel(v)) return std::nullopt;
+    const auto it = map.find(key(v));
+    if (it == map.end() || glm::length(it->second) == 0.0) return std::nullopt;
+    return glm::normalize(it->second);
+  }
+
+private:
+  using Map = std::unordered_map<std::uint64_t, glm::dvec3>;
+  static std::uint64_t key(const glm::ivec3& v) {
+    return (static_cast<std::uint64_t>(v.x) << 42) | (static_cast<std::uint64_t>(v.y) << 21) |
+           static_cast<std::uint64_t>(v.z);
+  }
+  void add(Map& map, const glm::ivec3& v, const glm::dvec3& n) {
+    if (grid_.containsVoxel(v)) map[key(v)] += n;
+  }
+  const VoxelGrid& grid_;
+  Map vertices_;
+  Map edges_;
+};
+
+}  // namespace
 
 std::size_t Pointshell::count(PointFeature feature) const {
   return static_cast<std::size_t>(std::count(features.begin(), features.end(), feature));
@@ -23,12 +84,17 @@ double Pointshell::radiusAbout(const glm::dvec3& centreLocal) const {
   return radius;
 }
 
-Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::span<const MeshFeatures> features,
-                           const PointshellOptions& options, const ProgressFn& progress) {
+void checkPointshellOptions(const PointshellOptions& options) {
   const double s = options.pointSpacingM;
   if (!(s > 0.0) || !std::isfinite(s)) {
     throw Error("point spacing must be a positive number of metres, not " + std::to_string(s));
   }
+}
+
+Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::span<const MeshFeatures> features,
+                           const PointshellOptions& options, const ProgressFn& progress) {
+  checkPointshellOptions(options);
+  const double s = options.pointSpacingM;
   Bounds bounds;
   for (const TriangleMesh* mesh : meshes) {
     for (const glm::vec3& p : mesh->positionsWorld) bounds.add(glm::dvec3(p));
@@ -81,6 +147,8 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::spa
   shell.chunkCentroidsLocal.resize(chunks.size());
 
   const EmbreeScene scene(meshes);
+  const PseudoNormals pseudoNormals(meshes);
+  const FeatureNormals featureNormals(grid, features, pseudoNormals);
   parallelFor(
       chunks.size(), options.threads,
       [&](std::size_t c) {
@@ -91,15 +159,20 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::spa
           if (!(b & kSurfaceBit)) continue;
           const glm::ivec3 v = chunks[c].ijkChunk * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
           const glm::dvec3 centre = grid.voxelCentre(v);
-          // a surface voxel's centre is within half its diagonal of the surface
-          const auto nearest = scene.closestPoint(centre, s);
-          const glm::dvec3 normal = nearest ? nearest->faceNormal : glm::dvec3(0.0, 0.0, 1.0);
+          const PointFeature feature = (b & kVertexBit) ? PointFeature::Vertex
+                                       : (b & kEdgeBit) ? PointFeature::Edge
+                                                        : PointFeature::Surface;
+          glm::dvec3 normal(0.0, 0.0, 1.0);
+          if (const auto n = featureNormals.normalOf(v, feature)) {
+            normal = *n;
+          } else if (const auto nearest = scene.closestPoint(centre, s)) {
+            // a surface voxel's centre is within half its diagonal of the surface
+            normal = pseudoNormals.normalAt(*nearest, kFeatureTolerance * s);
+          }
           const glm::dvec3 position = centre + options.displacementM * normal;
           shell.positionsLocal[at] = glm::vec3(position);
           shell.normalsLocal[at] = glm::vec3(normal);
-          shell.features[at] = (b & kVertexBit) ? PointFeature::Vertex
-                               : (b & kEdgeBit) ? PointFeature::Edge
-                                                : PointFeature::Surface;
+          shell.features[at] = feature;
           sum += position;
           ++at;
         }

@@ -45,6 +45,9 @@ struct Pointshell {
   double radiusAbout(const glm::dvec3& centreLocal) const;
 };
 
+/// Throws voxhap::Error when the point spacing is not a positive number of metres.
+void checkPointshellOptions(const PointshellOptions& options);
+
 /// Builds the pointshell of `meshes` (object-local frame); `features[i]` belongs to
 /// `meshes[i]`. Deterministic whatever the thread count. Throws voxhap::Error on bad
 /// options.

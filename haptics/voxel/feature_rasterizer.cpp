@@ -12,6 +12,11 @@
 namespace voxhap {
 namespace {
 
+/// Voxel boxes are grown by this fraction of a voxel on every side, so that a face or
+/// an edge lying exactly on a voxel boundary marks the voxels on both sides whatever the
+/// rounding of the boundary's coordinate (the boxes are closed).
+constexpr double kTouchFraction = 1e-9;
+
 enum class ItemKind : std::uint8_t { Triangle, Edge, Vertex };
 
 /// One thing to rasterize, binned to a hyperchunk.
@@ -35,9 +40,12 @@ class Rasterizer {
 public:
   Rasterizer(const VoxelGrid& grid, HyperchunkBlocks<std::uint8_t>& out) : grid_(grid), out_(out) {}
 
+  /// The voxels that may touch the box [lo, hi] (grown by kTouchFraction of a voxel).
   VoxelBox boxOf(const glm::dvec3& lo, const glm::dvec3& hi) const {
     const glm::ivec3 last = grid_.dimsVoxels() - 1;
-    return {glm::clamp(grid_.voxelOf(lo), glm::ivec3(0), last), glm::clamp(grid_.voxelOf(hi), glm::ivec3(0), last)};
+    const double eps = kTouchFraction * grid_.voxelSizeM;
+    return {glm::clamp(grid_.voxelOf(lo - eps), glm::ivec3(0), last),
+            glm::clamp(grid_.voxelOf(hi + eps), glm::ivec3(0), last)};
   }
 
   void mark(const glm::ivec3& v, std::uint8_t bits) {
@@ -55,11 +63,11 @@ public:
     const int u = (w + 1) % 3;
     const int v = (w + 2) % 3;
     const double s = grid_.voxelSizeM;
-    const glm::dvec3 half(0.5 * s);
+    const glm::dvec3 half(0.5 * s * (1.0 + kTouchFraction));
     const glm::dvec3 pts[3] = {a, b, c};
     for (int iu = box.lo[u]; iu <= box.hi[u]; ++iu) {
-      const double u0 = grid_.originLocal[u] + iu * s;
-      const double u1 = u0 + s;
+      const double u0 = grid_.originLocal[u] + (iu - kTouchFraction) * s;
+      const double u1 = u0 + (1.0 + 2.0 * kTouchFraction) * s;
       // the projected triangle's extent along v within this slab of u
       double vMin = 1e300;
       double vMax = -1e300;
@@ -85,8 +93,8 @@ public:
         vMax = std::max({vMax, va, vb});
       }
       if (vMin > vMax) continue;
-      const int ivLo = std::max(box.lo[v], static_cast<int>(std::floor((vMin - grid_.originLocal[v]) / s)));
-      const int ivHi = std::min(box.hi[v], static_cast<int>(std::floor((vMax - grid_.originLocal[v]) / s)));
+      const int ivLo = std::max(box.lo[v], static_cast<int>(std::floor((vMin - grid_.originLocal[v]) / s - kTouchFraction)));
+      const int ivHi = std::min(box.hi[v], static_cast<int>(std::floor((vMax - grid_.originLocal[v]) / s + kTouchFraction)));
       for (int iv = ivLo; iv <= ivHi; ++iv) {
         const double v0 = grid_.originLocal[v] + iv * s;
         // the plane's range along w over this column's footprint
@@ -103,8 +111,8 @@ public:
             wMin = std::min(wMin, pw);
             wMax = std::max(wMax, pw);
           }
-          wMin = (wMin - grid_.originLocal[w]) / s - 1e-9;
-          wMax = (wMax - grid_.originLocal[w]) / s + 1e-9;
+          wMin = (wMin - grid_.originLocal[w]) / s - 2.0 * kTouchFraction;
+          wMax = (wMax - grid_.originLocal[w]) / s + 2.0 * kTouchFraction;
         } else {
           wMin = box.lo[w];
           wMax = box.hi[w];
@@ -131,7 +139,7 @@ public:
     const glm::dvec3 ad = glm::abs(d);
     const int w = ad.x >= ad.y && ad.x >= ad.z ? 0 : (ad.y >= ad.z ? 1 : 2);
     const double s = grid_.voxelSizeM;
-    const glm::dvec3 half(0.5 * s);
+    const glm::dvec3 half(0.5 * s * (1.0 + kTouchFraction));
     for (int iw = box.lo[w]; iw <= box.hi[w]; ++iw) {
       VoxelBox slab = box;
       if (ad[w] > 0.0) {

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "haptics/core/error.h"
 #include "haptics/core/parallel.h"
 #include "haptics/geometry/embree_scene.h"
+#include "haptics/voxel/chunk_distance.h"
 #include "haptics/voxel/feature_rasterizer.h"
 #include "haptics/voxel/interior_classifier.h"
 
@@ -49,6 +51,7 @@ struct HyperResult {
   VoxelWord uniformWord = 0;
   std::vector<std::uint32_t> chunkEntries;  // kUniform | word, or index into blocks
   std::vector<std::uint8_t> blocks;         // packed words of the mixed chunks
+  std::array<std::uint64_t, kChunksPerHyper / 64> bearing{};  // bit per chunk: a surface field not far
   VoxelizeStats stats;                      // voxel counts and votes only
 };
 
@@ -193,6 +196,11 @@ public:
           words[i] = enc.pack(value[0], value[1], value[2]);
           result.stats.edgeVoxels += (bits & kEdgeBit) ? 1 : 0;
           result.stats.vertexVoxels += (bits & kVertexBit) ? 1 : 0;
+          if (bits & kSurfaceBit) {
+            result.stats.vertexPoints += (bits & kVertexBit) ? 1 : 0;
+            result.stats.edgePoints += (bits & kVertexBit) == 0 && (bits & kEdgeBit) ? 1 : 0;
+            result.stats.surfacePoints += (bits & (kVertexBit | kEdgeBit)) ? 0 : 1;
+          }
           if (value[0] == kValueInterior) {
             ++result.stats.interiorVoxels;
           } else if (value[0] == kValueFeature) {
@@ -238,16 +246,21 @@ private:
     result.uniform = true;
     result.uniformWord = words[0];
     VoxelWord chunkWords[kVoxelsPerChunk];
+    const VoxelWord surfaceMask = options_.encoding.fieldMask();
     for (int cz = 0; cz < kHyperEdgeChunks; ++cz) {
       for (int cy = 0; cy < kHyperEdgeChunks; ++cy) {
         for (int cx = 0; cx < kHyperEdgeChunks; ++cx) {
           bool chunkUniform = true;
+          bool bearing = false;
           for (int i = 0; i < kVoxelsPerChunk; ++i) {
             const glm::ivec3 v = glm::ivec3(cx, cy, cz) * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
             chunkWords[i] = words[at3(v.x, v.y, v.z, c, c)];
             chunkUniform = chunkUniform && chunkWords[i] == chunkWords[0];
+            bearing = bearing || (chunkWords[i] & surfaceMask) != 0;
           }
-          std::uint32_t& entry = result.chunkEntries[chunkInHyper({cx, cy, cz})];
+          const std::uint32_t chunkIndex = chunkInHyper({cx, cy, cz});
+          if (bearing) result.bearing[chunkIndex / 64] |= std::uint64_t{1} << (chunkIndex % 64);
+          std::uint32_t& entry = result.chunkEntries[chunkIndex];
           if (chunkUniform) {
             entry = Voxmap::kUniform | chunkWords[0];
             result.uniform = result.uniform && chunkWords[0] == result.uniformWord;
@@ -272,6 +285,30 @@ private:
   const HyperchunkBlocks<std::uint8_t>& features_;
   const InteriorClassifier& interior_;
 };
+
+/// Coordinates of hyperchunk `h` of a grid of `dimsHyper` hyperchunks (x fastest).
+glm::ivec3 hyperCoordinates(std::size_t h, const glm::ivec3& dimsHyper) {
+  const auto nx = static_cast<std::size_t>(dimsHyper.x);
+  const auto ny = static_cast<std::size_t>(dimsHyper.y);
+  return {static_cast<int>(h % nx), static_cast<int>((h / nx) % ny), static_cast<int>(h / (nx * ny))};
+}
+
+/// Marks in `chunkField` (the grid's chunks, x fastest) with 0 the chunks of hyperchunk
+/// `ijkHyper` that hold a voxel whose surface field is not far.
+void markBearingChunks(const HyperResult& r, const glm::ivec3& ijkHyper, const glm::ivec3& dimsChunks,
+                       VoxelWord surfaceMask, std::vector<std::uint8_t>& chunkField) {
+  const bool uniformBearing = (r.uniformWord & surfaceMask) != 0;
+  if (r.uniform && !uniformBearing) return;
+  for (int c = 0; c < kChunksPerHyper; ++c) {
+    const glm::ivec3 local(c & (kHyperEdgeChunks - 1), (c >> kHyperEdgeLog2) & (kHyperEdgeChunks - 1),
+                           c >> (2 * kHyperEdgeLog2));
+    const auto bit = static_cast<std::uint32_t>(c);
+    const bool bearing = r.uniform ? uniformBearing : ((r.bearing[bit / 64] >> (bit % 64)) & 1u) != 0;
+    if (!bearing) continue;
+    const glm::ivec3 v = ijkHyper * kHyperEdgeChunks + local;
+    chunkField[at3(v.x, v.y, v.z, dimsChunks.x, dimsChunks.y)] = 0;
+  }
+}
 
 double surfaceArea(std::span<const TriangleMesh* const> meshes) {
   double area = 0.0;
@@ -312,8 +349,7 @@ std::uint64_t estimateVoxelizeBytes(double surfaceAreaM2, std::uint64_t triangle
   return static_cast<std::uint64_t>(featureBytes + 2.0 * voxmapBytes + crossingBytes + meshBytes);
 }
 
-VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<const MeshFeatures> features,
-                         const VoxelizeOptions& options, const ProgressFn& progress) {
+void checkVoxelizeOptions(const VoxelizeOptions& options) {
   if (!(options.voxelSizeM > 0.0) || !std::isfinite(options.voxelSizeM)) {
     throw Error("voxel size must be a positive number of metres, not " + std::to_string(options.voxelSizeM));
   }
@@ -321,6 +357,11 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
     throw Error("distance fields of " + std::to_string(options.encoding.bitsPerField) + " bits with range " +
                 std::to_string(options.encoding.rangeVoxels) + " are not supported (2, 4 or 8 bits, range 1 … 16)");
   }
+}
+
+VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<const MeshFeatures> features,
+                         const VoxelizeOptions& options, const ProgressFn& progress) {
+  checkVoxelizeOptions(options);
   Bounds bounds;
   std::uint64_t triangles = 0;
   for (const TriangleMesh* mesh : meshes) {
@@ -369,15 +410,19 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
         if (!transform || transform->haloSize() != kHyperEdgeVoxels + 2 * options.encoding.rangeVoxels) {
           transform = std::make_unique<HyperchunkTransform>(options.encoding.rangeVoxels);
         }
-        const int x = static_cast<int>(h % static_cast<std::size_t>(dims.x));
-        const int y = static_cast<int>((h / static_cast<std::size_t>(dims.x)) % static_cast<std::size_t>(dims.y));
-        const int z = static_cast<int>(h / (static_cast<std::size_t>(dims.x) * static_cast<std::size_t>(dims.y)));
-        results[h] = voxelizer.build({x, y, z}, *transform);
+        results[h] = voxelizer.build(hyperCoordinates(h, dims), *transform);
       },
       stage(0.5, 0.95));
 
   // assemble in hyperchunk order, so the arrays do not depend on scheduling
   VoxelizeStats stats;
+  const VoxelWord surfaceMask = options.encoding.fieldMask();
+  const glm::ivec3 dimsChunks = grid.dimsChunks();
+  // every chunk starts as a non-source of the chunk-level transform
+  std::vector<std::uint8_t> chunkDistances(static_cast<std::size_t>(dimsChunks.x) *
+                                               static_cast<std::size_t>(dimsChunks.y) *
+                                               static_cast<std::size_t>(dimsChunks.z),
+                                           kChunkDistanceCap);
   std::vector<std::uint32_t> hyper(hyperCount);
   std::vector<std::uint32_t> chunks;
   std::vector<std::uint8_t> voxelBytes;
@@ -390,7 +435,11 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
     stats.edgeVoxels += r.stats.edgeVoxels;
     stats.vertexVoxels += r.stats.vertexVoxels;
     stats.voteDisagreements += r.stats.voteDisagreements;
+    stats.vertexPoints += r.stats.vertexPoints;
+    stats.edgePoints += r.stats.edgePoints;
+    stats.surfacePoints += r.stats.surfacePoints;
     if (!stats.firstDisagreementLocal) stats.firstDisagreementLocal = r.stats.firstDisagreementLocal;
+    markBearingChunks(r, hyperCoordinates(h, dims), dims * kHyperEdgeChunks, surfaceMask, chunkDistances);
     if (r.uniform) {
       hyper[h] = Voxmap::kUniform | r.uniformWord;
       continue;
@@ -401,10 +450,13 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
     voxelBytes.insert(voxelBytes.end(), r.blocks.begin(), r.blocks.end());
     r = HyperResult{};
   }
+  chessboardChunkTransform(chunkDistances, dimsChunks);
   stats.triangles = triangles;
   for (const MeshFeatures& f : features) stats.polygonsAfterMerge += f.polygonCount;
   if (progress) progress(1.0);
-  return {Voxmap(grid, options.encoding, std::move(hyper), std::move(chunks), std::move(voxelBytes)), stats};
+  return {Voxmap(grid, options.encoding, std::move(hyper), std::move(chunks), std::move(voxelBytes),
+                 std::move(chunkDistances)),
+          stats};
 }
 
 }  // namespace voxhap

@@ -6,6 +6,7 @@
 ///   4. three chessboard distance transforms, hyperchunk by hyperchunk, with a halo of
 ///      the field's range, as three separable passes (x, y, z) of a min–max filter
 ///   5. chunks whose voxels are all equal stored as one word
+///   6. the chunk-level distance field over the whole grid (chunk_distance.h)
 /// Hyperchunks are independent in steps 2 and 4, so they run in parallel; the voxmap
 /// is the same bit for bit whatever the thread count.
 
@@ -35,6 +36,11 @@ struct VoxelizeStats {
   std::uint64_t distanceVoxels = 0;  ///< surface field values 3 … 2 + range
   std::uint64_t edgeVoxels = 0;      ///< voxels a feature edge passes through
   std::uint64_t vertexVoxels = 0;    ///< voxels holding a feature vertex
+  /// Surface voxels by the feature they inherit (vertex > edge > surface): the labels
+  /// of a pointshell taken at this voxel size, which has one point per surface voxel.
+  std::uint64_t vertexPoints = 0;
+  std::uint64_t edgePoints = 0;     ///< surface voxels meeting a feature edge, holding no feature vertex
+  std::uint64_t surfacePoints = 0;  ///< the other surface voxels
   std::uint64_t triangles = 0;
   std::uint64_t polygonsAfterMerge = 0;
   std::uint64_t voteDisagreements = 0;          ///< free voxels whose three votes differ
@@ -49,6 +55,10 @@ struct VoxelizedObject {
 
 /// Rough peak memory of voxelizing meshes of this total surface area, bytes.
 std::uint64_t estimateVoxelizeBytes(double surfaceAreaM2, std::uint64_t triangles, const VoxelizeOptions& options);
+
+/// Throws voxhap::Error when `options` are invalid (voxel size not a positive number,
+/// unsupported bit width or range).
+void checkVoxelizeOptions(const VoxelizeOptions& options);
 
 /// Voxelizes the union of `meshes` (object-local frame, m); `features[i]` belongs to
 /// `meshes[i]`. Throws voxhap::Error, before allocating, when the options are invalid

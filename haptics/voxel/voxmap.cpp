@@ -1,23 +1,62 @@
 #include "haptics/voxel/voxmap.h"
 
 #include <cassert>
+#include <cmath>
 
 namespace voxhap {
+namespace {
+
+/// Largest grid edge in hyperchunks a voxmap may have (2^24 voxels, as the voxelizer allows).
+constexpr int kMaxDimsHyper = (1 << 24) / kHyperEdgeVoxels + 1;
+
+/// Whether a tree entry is a uniform word that fits the encoding, or an index below `count`.
+bool entryValid(std::uint32_t entry, std::size_t count, std::uint32_t uniformLimit) {
+  if (entry & Voxmap::kUniform) return (entry & ~Voxmap::kUniform) < uniformLimit;
+  return entry < count;
+}
+
+}  // namespace
 
 Voxmap::Voxmap(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::uint32_t> hyper,
-               std::vector<std::uint32_t> chunks, std::vector<std::uint8_t> voxelBytes)
+               std::vector<std::uint32_t> chunks, std::vector<std::uint8_t> voxelBytes,
+               std::vector<std::uint8_t> chunkDistances)
     : grid_(grid),
       encoding_(encoding),
       bytesPerWord_(static_cast<std::size_t>(encoding.bytesPerWord())),
       wordMask_(encoding.bytesPerWord() == 4 ? 0xFFFFFFFFu : (1u << (8 * encoding.bytesPerWord())) - 1u),
       hyper_(std::move(hyper)),
       chunks_(std::move(chunks)),
-      voxelBytes_(std::move(voxelBytes)) {
-  assert(encoding_.valid());
-  assert(hyper_.size() == static_cast<std::size_t>(grid_.dimsHyper.x) * static_cast<std::size_t>(grid_.dimsHyper.y) *
-                              static_cast<std::size_t>(grid_.dimsHyper.z));
-  assert(chunks_.size() % kChunksPerHyper == 0);
+      voxelBytes_(std::move(voxelBytes)),
+      chunkDistances_(std::move(chunkDistances)) {
+  assert(validate(grid_, encoding_, hyper_, chunks_, voxelBytes_.size(), chunkDistances_.size()).empty());
   voxelBytes_.resize(voxelBytes_.size() + kPadBytes, 0);
+}
+
+std::string Voxmap::validate(const VoxelGrid& grid, const VoxelEncoding& encoding,
+                             std::span<const std::uint32_t> hyper, std::span<const std::uint32_t> chunks,
+                             std::size_t voxelBytesSize, std::size_t chunkDistancesSize) {
+  if (!encoding.valid()) return "invalid encoding (" + std::to_string(encoding.bitsPerField) + " bits)";
+  if (!(grid.voxelSizeM > 0.0) || !std::isfinite(grid.voxelSizeM)) return "voxel size is not a positive number";
+  for (int k = 0; k < 3; ++k) {
+    if (grid.dimsHyper[k] <= 0 || grid.dimsHyper[k] > kMaxDimsHyper) return "grid size out of range";
+    if (!std::isfinite(grid.originLocal[k])) return "grid origin is not finite";
+  }
+  const glm::ivec3 dc = grid.dimsChunks();
+  const std::size_t chunkCount =
+      static_cast<std::size_t>(dc.x) * static_cast<std::size_t>(dc.y) * static_cast<std::size_t>(dc.z);
+  if (hyper.size() * kChunksPerHyper != chunkCount) return "hyperchunk table does not match the grid";
+  if (chunkDistancesSize != chunkCount) return "chunk-level field does not match the grid";
+  if (chunks.size() % kChunksPerHyper != 0) return "chunk table is not whole hyperchunks";
+  const std::size_t blockBytes = std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
+  if (voxelBytesSize % blockBytes != 0) return "voxel words are not whole chunks";
+  const std::uint32_t uniformLimit = 1u << (kFieldCount * encoding.bitsPerField);
+  for (std::uint32_t entry : hyper) {
+    if (!entryValid(entry, chunks.size() / kChunksPerHyper, uniformLimit)) return "hyperchunk entry out of range";
+  }
+  for (std::uint32_t entry : chunks) {
+    if (!entryValid(entry, voxelBytesSize / blockBytes, uniformLimit)) return "chunk entry out of range";
+  }
+  return {};
 }
 
 }  // namespace voxhap

@@ -8,11 +8,17 @@
 ///               its block of 512 voxel words in voxelBytes_
 ///   voxelBytes_ packed words, encoding.bytesPerWord() bytes each, x fastest
 ///
+/// Beside the tree, chunkDistances_ holds one byte per chunk of the grid (x fastest):
+/// the chessboard distance in chunks to the nearest voxel-bearing chunk (chunk_distance.h).
+///
 /// A lookup is two or three dependent loads, no branch on the bit width, no
 /// allocation; any thread may read concurrently.
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "haptics/voxel/voxel_encoding.h"
@@ -26,8 +32,18 @@ public:
   static constexpr std::uint32_t kUniform = 0x80000000u;
 
   Voxmap() = default;
+  /// Takes the flat tree (see above) and the chunk-level field, one byte per chunk of
+  /// `grid`, x fastest. The arrays must be consistent (the voxelizer's output, or a
+  /// cache file that passed validate()).
   Voxmap(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::uint32_t> hyper,
-         std::vector<std::uint32_t> chunks, std::vector<std::uint8_t> voxelBytes);
+         std::vector<std::uint32_t> chunks, std::vector<std::uint8_t> voxelBytes,
+         std::vector<std::uint8_t> chunkDistances);
+
+  /// Why these arrays do not make a voxmap (an index out of range, a size that does
+  /// not match the grid), or an empty string when they do. For data read from disk.
+  static std::string validate(const VoxelGrid& grid, const VoxelEncoding& encoding,
+                              std::span<const std::uint32_t> hyper, std::span<const std::uint32_t> chunks,
+                              std::size_t voxelBytesSize, std::size_t chunkDistancesSize);
 
   const VoxelGrid& grid() const { return grid_; }
   const VoxelEncoding& encoding() const { return encoding_; }
@@ -54,11 +70,37 @@ public:
     return encoding_.value(word(ijkVoxel), field);
   }
 
+  /// Chessboard distance, in chunks, from chunk `ijkChunk` to the nearest chunk holding a
+  /// voxel whose surface field is not far; 0 for such a chunk, capped at 255. Outside
+  /// the grid: the chessboard distance to the grid's box of chunks (a lower bound), at
+  /// least 1, capped at 255.
+  std::uint8_t chunkDistance(const glm::ivec3& ijkChunk) const noexcept {
+    const glm::ivec3 d = grid_.dimsChunks();
+    const glm::ivec3 below = glm::ivec3(0) - ijkChunk;
+    const glm::ivec3 above = ijkChunk - (d - 1);
+    const int outside = std::max({below.x, below.y, below.z, above.x, above.y, above.z});
+    if (outside > 0 || chunkDistances_.empty()) return static_cast<std::uint8_t>(std::clamp(outside, 1, 255));
+    return chunkDistances_[static_cast<std::size_t>(ijkChunk.x) +
+                           static_cast<std::size_t>(d.x) * (static_cast<std::size_t>(ijkChunk.y) +
+                                                            static_cast<std::size_t>(d.y) *
+                                                                static_cast<std::size_t>(ijkChunk.z))];
+  }
+
+  /// The flat tree's arrays and the chunk-level field, for serialization; see above.
+  std::span<const std::uint32_t> hyperEntries() const { return hyper_; }
+  std::span<const std::uint32_t> chunkEntries() const { return chunks_; }
+  /// Packed words of the mixed chunks, without the read padding.
+  std::span<const std::uint8_t> voxelBytes() const {
+    return {voxelBytes_.data(), voxelBytes_.size() - std::min(voxelBytes_.size(), kPadBytes)};
+  }
+  std::span<const std::uint8_t> chunkDistances() const { return chunkDistances_; }
+
   /// Chunks stored voxel by voxel (the rest are uniform).
-  std::size_t mixedChunkCount() const { return (voxelBytes_.size() - kPadBytes) / blockBytes(); }
-  /// Bytes held by the tree's arrays.
+  std::size_t mixedChunkCount() const { return voxelBytes().size() / blockBytes(); }
+  /// Bytes held by the tree's arrays and the chunk-level field.
   std::size_t memoryBytes() const {
-    return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) + voxelBytes_.size();
+    return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) + voxelBytes_.size() +
+           chunkDistances_.size();
   }
 
   /// Bytes after the last block, so that a 4-byte read of the last word stays inside.
@@ -74,6 +116,7 @@ private:
   std::vector<std::uint32_t> hyper_;
   std::vector<std::uint32_t> chunks_;
   std::vector<std::uint8_t> voxelBytes_;
+  std::vector<std::uint8_t> chunkDistances_;
 };
 
 }  // namespace voxhap

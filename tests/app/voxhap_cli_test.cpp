@@ -1,88 +1,35 @@
 // Runs the real `voxhap` executable and checks exit codes, stdout and stderr.
 
-#include <sys/wait.h>
-
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
+using voxhap::test::CliRun;
+using voxhap::test::lineCount;
+using voxhap::test::slurp;
 
-struct CliRun {
-  int exitCode;
-  std::string out;
-  std::string err;
-};
-
-std::string shellQuote(const std::string& s) {
-  std::string q(1, '\'');
-  for (char c : s) {
-    if (c == '\'') {
-      q.append("'\\''");
-    } else {
-      q.push_back(c);
-    }
-  }
-  q.push_back('\'');
-  return q;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class VoxhapCli : public ::testing::Test {
-protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("voxhap-cli-" + std::string(info->name()) + "-" +
-                                        std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  /// Runs voxhap with a private cache folder; stdin is empty.
-  CliRun voxhap(const std::vector<std::string>& args) const {
-    std::string command = "cd " + shellQuote(dir_.string()) + " && VOXHAP_CACHE_DIR=" +
-                          shellQuote((dir_ / "cache").string()) + " " + shellQuote(VOXHAP_EXE);
-    for (const std::string& a : args) {
-      command.push_back(' ');
-      command.append(shellQuote(a));
-    }
-    command += " </dev/null >out.txt 2>err.txt";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "out.txt"), slurp(dir_ / "err.txt")};
-  }
-
-  static std::string asset(const std::string& name) {
-    return (fs::path(VOXHAP_SOURCE_DIR) / "assets" / name).string();
-  }
-
-  fs::path dir_;
-};
-
-int lineCount(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+class VoxhapCli : public voxhap::test::CliTest {};
 
 TEST_F(VoxhapCli, HelpListsOnlyWorkingCommandsAndExitsZero) {
   const CliRun r = voxhap({"--help"});
   EXPECT_EQ(r.exitCode, 0);
   EXPECT_NE(r.out.find("scene"), std::string::npos);
   EXPECT_NE(r.out.find("demo"), std::string::npos);
-  EXPECT_EQ(r.out.find("simulate"), std::string::npos);
+  EXPECT_NE(r.out.find("simulate"), std::string::npos);
+  EXPECT_EQ(r.out.find("bench"), std::string::npos);
 }
 
 TEST_F(VoxhapCli, EveryCommandHasHelp) {
   for (const auto& args : std::vector<std::vector<std::string>>{
-           {"scene", "--help"}, {"scene", "info", "--help"}, {"scene", "generate", "--help"}, {"demo", "--help"}}) {
+           {"scene", "--help"}, {"scene", "info", "--help"}, {"scene", "generate", "--help"}, {"demo", "--help"},
+           {"voxelize", "--help"}, {"simulate", "--help"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 0) << args[0];
     EXPECT_NE(r.out.find("Usage: voxhap"), std::string::npos) << r.out;

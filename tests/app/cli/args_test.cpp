@@ -56,5 +56,23 @@ TEST(Args, ParsesUnsignedStrictly) {
   EXPECT_THROW(parseUnsigned("7x", "seed"), UsageError);
 }
 
+TEST(Args, ParsesLengthsInMetresOrMillimetres) {
+  EXPECT_DOUBLE_EQ(parseLengthM("0.35mm", "voxel-size"), 0.35e-3);
+  EXPECT_DOUBLE_EQ(parseLengthM("2.5 mm", "voxel-size"), 2.5e-3);
+  EXPECT_DOUBLE_EQ(parseLengthM("0.00035m", "voxel-size"), 0.00035);
+  EXPECT_DOUBLE_EQ(parseLengthM("0.00035", "voxel-size"), 0.00035);
+  EXPECT_DOUBLE_EQ(parseLengthM("-12mm", "slice", LengthSign::Any), -0.012);
+  EXPECT_DOUBLE_EQ(parseLengthM("0", "slice", LengthSign::Any), 0.0);
+  for (const char* bad : {"", "0", "-1mm", "nan", "inf", "1e999", "0.35 cm", "mm", "0.35mmm", "abc", "0.3.5"}) {
+    try {
+      parseLengthM(bad, "voxel-size");
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find("--voxel-size"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(parseLengthM("nan", "slice", LengthSign::Any), UsageError);
+}
+
 }  // namespace
 }  // namespace voxhap::cli

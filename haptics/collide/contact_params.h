@@ -1,0 +1,36 @@
+#pragma once
+/// Parameters of the point-voxel contact model (DESIGN §4.4, paper §3.2, §4).
+
+#include <cstdint>
+
+#include "haptics/voxel/voxel_encoding.h"
+
+namespace voxhap {
+
+/// The force layer of DESIGN §4.4: the second free-space layer, the least that keeps
+/// exact surfaces from interpenetrating (paper §3.2).
+inline constexpr std::uint8_t kDefaultForceLayer = distanceValue(2);
+
+/// Above this many points pushing, the per-point stiffness and damping are scaled down
+/// so that the total stays at kStiffContacts · per-point stiffness (the original VPS caps
+/// at ~10). Points count by their depth, up to one voxel each, so that a point entering
+/// the force layer does not make the others' forces jump. Four: a box on a plate under
+/// geometrical awareness stands on its four corner points with the pair's whole stiffness.
+inline constexpr int kStiffContacts = 4;
+
+/// How point tests read the voxmap and turn contacts into forces.
+struct ContactParams {
+  /// Voxels with a value in [1, forceLayer] are in contact; larger values give clearance
+  /// (collision offsetting). At most the encoding's largest value.
+  std::uint8_t forceLayer = kDefaultForceLayer;
+  /// Geometrical awareness (paper §4): surface points sample the vertex field, vertex
+  /// points the surface field, edge points the edge field. Off: every point samples the
+  /// surface field.
+  bool geometricalAwareness = true;
+  /// Stiffness of one point in contact, N/m; the total is capped at kStiffContacts times this.
+  double pointStiffnessNPerM = 0.0;
+  /// Damping of one point in contact along its normal, N·s/m (capped like the stiffness).
+  double pointDampingNsPerM = 0.0;
+};
+
+}  // namespace voxhap

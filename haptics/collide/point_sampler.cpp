@@ -1,0 +1,60 @@
+#include "haptics/collide/point_sampler.h"
+
+#include <cmath>
+
+#include <glm/gtc/quaternion.hpp>
+
+namespace voxhap {
+namespace {
+
+glm::ivec3 voxelOf(const glm::vec3& u) {
+  return {static_cast<int>(std::floor(u.x)), static_cast<int>(std::floor(u.y)), static_cast<int>(std::floor(u.z))};
+}
+
+std::uint8_t fieldValue(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift) {
+  return static_cast<std::uint8_t>((voxmap.word(ijk) >> shift) & voxmap.encoding().fieldMask());
+}
+
+}  // namespace
+
+VoxelTransform VoxelTransform::make(const Pose& shellToVoxmap, const VoxelGrid& grid) {
+  const double inv = 1.0 / grid.voxelSizeM;
+  VoxelTransform t;
+  t.rotationScaled = glm::mat3(glm::mat3_cast(shellToVoxmap.orientation) * inv);
+  t.offset = glm::vec3((shellToVoxmap.position - grid.originLocal) * inv);
+  return t;
+}
+
+std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, const VoxelEncoding& encoding) {
+  // indexed by PointFeature {Surface, Edge, Vertex}
+  const Field aware[3] = {Field::Vertex, Field::Edge, Field::Surface};
+  std::array<std::uint8_t, 3> shifts{};
+  for (int f = 0; f < 3; ++f) {
+    const Field field = geometricalAwareness ? aware[f] : Field::Surface;
+    shifts[static_cast<std::size_t>(f)] = static_cast<std::uint8_t>(static_cast<int>(field) * encoding.bitsPerField);
+  }
+  return shifts;
+}
+
+std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
+                           const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t forceLayer,
+                           std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept {
+  const glm::vec3* positions = shell.positionsLocal.data();
+  const PointFeature* features = shell.features.data();
+  std::uint32_t found = 0;
+  for (std::uint32_t i = first; i < last; ++i) {
+    const glm::ivec3 ijk = voxelOf(transform.apply(positions[i]));
+    const std::uint8_t value = fieldValue(voxmap, ijk, fieldShifts[static_cast<std::size_t>(features[i])]);
+    // value − 1 wraps far (0) to 255, so one compare keeps [1, forceLayer]
+    if (static_cast<std::uint8_t>(value - 1u) < forceLayer) contacts[found++] = {i, ijk, value};
+  }
+  return found;
+}
+
+std::uint8_t samplePoint(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
+                         const std::array<std::uint8_t, 3>& fieldShifts, std::uint32_t index) noexcept {
+  const glm::ivec3 ijk = voxelOf(transform.apply(shell.positionsLocal[index]));
+  return fieldValue(voxmap, ijk, fieldShifts[static_cast<std::size_t>(shell.features[index])]);
+}
+
+}  // namespace voxhap

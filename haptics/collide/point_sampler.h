@@ -1,0 +1,55 @@
+#pragma once
+/// Point-voxel sampling (DESIGN §4.4, paper §2.1 and §4): points of a pointshell
+/// object, moved into the frame of a voxmap object, read the distance field their
+/// feature label asks for; the voxels at or inside the force layer are contacts.
+///
+/// The hot loop: one fused transform from pointshell-local metres straight to voxel
+/// coordinates (rotation and scale folded together, float), a floor, and the voxmap's
+/// two or three dependent loads. No allocation, no branch on the bit width; contacts go
+/// to a caller-sized buffer. Any number of threads may sample one voxmap at once.
+
+#include <array>
+#include <cstdint>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "haptics/dynamics/pose.h"
+#include "haptics/pointshell/pointshell.h"
+#include "haptics/voxel/voxmap.h"
+
+namespace voxhap {
+
+/// One point found at or inside the force layer.
+struct PointContact {
+  std::uint32_t point;    ///< index in the pointshell
+  glm::ivec3 ijkVoxel;    ///< voxel of the voxmap it fell in
+  std::uint8_t value;     ///< the field value read there (1 … force layer)
+};
+
+/// Pointshell-local metres → voxmap voxel coordinates (voxel (i,j,k) spans [i, i+1)).
+struct VoxelTransform {
+  glm::mat3 rotationScaled{1.0f};  ///< rotation (shell-local → voxmap-local) / voxel size
+  glm::vec3 offset{0.0f};          ///< (translation − grid origin) / voxel size
+
+  /// `shellToVoxmap` maps pointshell-local points to voxmap-local points.
+  static VoxelTransform make(const Pose& shellToVoxmap, const VoxelGrid& grid);
+
+  glm::vec3 apply(const glm::vec3& pointLocal) const { return rotationScaled * pointLocal + offset; }
+};
+
+/// The field each feature label samples: geometrical awareness or the surface field.
+std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, const VoxelEncoding& encoding);
+
+/// Tests points [first, last) of `shell` against `voxmap`; writes every point whose
+/// value lies in [1, forceLayer] to `contacts` (room for last − first entries) and
+/// returns how many it wrote. `fieldShifts` comes from fieldShiftsByFeature.
+std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
+                           const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t forceLayer,
+                           std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept;
+
+/// The field value point `index` reads (0 … 2^bits − 1); for tests and proximity.
+std::uint8_t samplePoint(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
+                         const std::array<std::uint8_t, 3>& fieldShifts, std::uint32_t index) noexcept;
+
+}  // namespace voxhap

@@ -1,0 +1,93 @@
+#include "haptics/collide/tangent_plane_force.h"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+namespace voxhap {
+namespace {
+
+/// Unit direction, voxmap frame, in which the field at `shift` falls around `ijk`
+/// (far counts as one more than the largest value); zero where it is flat.
+glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift) {
+  const VoxelEncoding& e = voxmap.encoding();
+  auto valueAt = [&](const glm::ivec3& v) {
+    const auto value = static_cast<int>((voxmap.word(v) >> shift) & e.fieldMask());
+    return value == kValueFar ? e.maxValue() + 1 : value;
+  };
+  glm::dvec3 g(0.0);
+  for (int axis = 0; axis < 3; ++axis) {
+    glm::ivec3 step(0);
+    step[axis] = 1;
+    g[axis] = valueAt(ijk - step) - valueAt(ijk + step);
+  }
+  const double length = glm::length(g);
+  return length > 0.0 ? g / length : g;
+}
+
+/// The contact normal (toward the voxmap object) by the feature of the point: a surface
+/// point's own normal `n` (under geometrical awareness it meets a vertex); for a vertex
+/// point the voxmap object's surface normal, the field's fall direction `g` (a corner has
+/// no normal of its own worth pushing along); for an edge point, between the two.
+glm::dvec3 pushDirectionOf(PointFeature feature, const glm::dvec3& n, const glm::dvec3& g) {
+  if (feature == PointFeature::Surface) return n;
+  if (feature == PointFeature::Vertex) return g;
+  const glm::dvec3 between = n + g;
+  const double length = glm::length(between);
+  return length > 1e-6 ? between / length : n;
+}
+
+}  // namespace
+
+PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, const ContactParams& params,
+                              const BodyMotion& shellMotion, const BodyMotion& voxmapMotion,
+                              std::span<const PointContact> contacts) noexcept {
+  PairWrench out;
+  if (contacts.empty()) return out;
+  const Pose shellToVoxmap = compose(inverse(voxmapMotion.poseWorld), shellMotion.poseWorld);
+  const glm::dvec3 shellComInVoxmap = apply(shellToVoxmap, shellMotion.comLocal);
+  const glm::dvec3 shellComWorld = apply(shellMotion.poseWorld, shellMotion.comLocal);
+  const glm::dvec3 voxmapComWorld = apply(voxmapMotion.poseWorld, voxmapMotion.comLocal);
+  const VoxelGrid& grid = voxmap.grid();
+  const double s = grid.voxelSizeM;
+  const auto shifts = fieldShiftsByFeature(params.geometricalAwareness, voxmap.encoding());
+
+  // unscaled sums (voxmap frame); the stiffness cap scales them at the end
+  glm::dvec3 force(0.0);
+  glm::dvec3 torque(0.0);
+  double weightedCount = 0.0;
+  for (const PointContact& c : contacts) {
+    const glm::dvec3 p = apply(shellToVoxmap, glm::dvec3(shell.positionsLocal[c.point]));
+    const glm::dvec3 n = applyRotation(shellToVoxmap, glm::dvec3(shell.normalsLocal[c.point]));
+    const PointFeature feature = shell.features[c.point];
+    glm::dvec3 g = fallDirection(voxmap, c.ijkVoxel, shifts[static_cast<std::size_t>(feature)]);
+    if (g == glm::dvec3(0.0)) g = n;
+    const glm::dvec3 pushDirection = pushDirectionOf(feature, n, g);
+    const double depth = glm::dot(p - grid.voxelCentre(c.ijkVoxel), g) +
+                         static_cast<double>(params.forceLayer - c.value) * s;
+    if (depth <= 0.0) continue;
+    ++out.pushingPoints;
+    weightedCount += std::min(1.0, depth / s);
+    out.maxDepthM = std::max(out.maxDepthM, depth);
+    // approach speed along n, world frame
+    const glm::dvec3 pWorld = apply(voxmapMotion.poseWorld, p);
+    const glm::dvec3 vShell = shellMotion.linearVelocityWorld +
+                              glm::cross(shellMotion.angularVelocityWorld, pWorld - shellComWorld);
+    const glm::dvec3 vVoxmap = voxmapMotion.linearVelocityWorld +
+                               glm::cross(voxmapMotion.angularVelocityWorld, pWorld - voxmapComWorld);
+    const double approach = glm::dot(vShell - vVoxmap, applyRotation(voxmapMotion.poseWorld, pushDirection));
+    const double push = std::max(0.0, params.pointStiffnessNPerM * depth + params.pointDampingNsPerM * approach);
+    const glm::dvec3 f = -push * pushDirection;
+    force += f;
+    torque += glm::cross(p - shellComInVoxmap, f);
+  }
+  const double scale = weightedCount > kStiffContacts ? double(kStiffContacts) / weightedCount : 1.0;
+  out.forceOnShellWorld = applyRotation(voxmapMotion.poseWorld, force * scale);
+  out.torqueOnShellWorld = applyRotation(voxmapMotion.poseWorld, torque * scale);
+  out.forceOnVoxmapWorld = -out.forceOnShellWorld;
+  out.torqueOnVoxmapWorld =
+      -out.torqueOnShellWorld - glm::cross(shellComWorld - voxmapComWorld, out.forceOnShellWorld);
+  return out;
+}
+
+}  // namespace voxhap

@@ -1,0 +1,75 @@
+#include "haptics/sim/scene_model.h"
+
+#include <algorithm>
+
+#include "haptics/core/error.h"
+#include "haptics/dynamics/mass_properties.h"
+#include "haptics/voxel/voxel_cache.h"
+
+namespace voxhap {
+Voxmap voxelizeObjects(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
+                       const ProgressFn& progress) {
+  return voxelizeCached(objects, options, CacheOptions{{}, false}, progress).voxelized.voxmap;
+}
+
+Pointshell pointshellOf(const SceneObject& object, const PointshellOptions& options, const ProgressFn& progress) {
+  const SceneObject* objects[] = {&object};
+  return pointshellCached(objects, options, CacheOptions{{}, false}, progress).pointshell;
+}
+
+SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& movingNames,
+                         const SceneModelOptions& options, const ProgressFn& progress) {
+  std::vector<const SceneObject*> moving;
+  for (const std::string& name : movingNames) {
+    const SceneObject* object = scene.find(name);
+    if (!object) {
+      std::string known;
+      for (const SceneObject& o : scene.objects) known += (known.empty() ? "" : ", ") + o.name;
+      throw Error(scene.sourceName + ": no object named '" + name + "' (objects: " + known + ")");
+    }
+    if (std::find(moving.begin(), moving.end(), object) != moving.end()) {
+      throw Error(scene.sourceName + ": object '" + name + "' is moved twice");
+    }
+    moving.push_back(object);
+  }
+  std::vector<const SceneObject*> fixed;
+  for (const SceneObject& object : scene.objects) {
+    if (std::find(moving.begin(), moving.end(), &object) == moving.end()) fixed.push_back(&object);
+  }
+
+  const double steps = static_cast<double>(2 * moving.size() + 1);
+  auto stage = [&](double k) -> ProgressFn {
+    if (!progress) return {};
+    return [&progress, k, steps](double f) { progress((k + f) / steps); };
+  };
+  VoxelizeOptions voxelOptions;
+  voxelOptions.encoding = VoxelEncoding::forBits(options.bitsPerField);
+  voxelOptions.buildFeatureFields = options.sim.geometricalAwareness;
+  std::optional<Voxmap> staticVoxmap;
+  if (!fixed.empty()) {
+    voxelOptions.voxelSizeM = options.staticVoxelSizeM;
+    staticVoxmap = options.voxelizeFn(fixed, voxelOptions, stage(0));
+  }
+
+  std::vector<MovingObjectModel> objects;
+  for (std::size_t i = 0; i < moving.size(); ++i) {
+    const SceneObject& source = *moving[i];
+    MovingObjectModel object;
+    object.name = source.name;
+    object.body = makeRigidBodyModel(computeMassProperties(source, objectDensityKgPerM3(source)), source.name);
+    PointshellOptions shellOptions;
+    shellOptions.pointSpacingM = options.pointSpacingM;
+    shellOptions.displacementM = options.pointDisplacementM;
+    object.shell = options.pointshellFn(source, shellOptions, stage(static_cast<double>(1 + 2 * i)));
+    if (moving.size() > 1) {
+      voxelOptions.voxelSizeM = options.pointSpacingM;
+      const SceneObject* one[] = {&source};
+      object.voxmap = options.voxelizeFn(one, voxelOptions, stage(static_cast<double>(2 + 2 * i)));
+    }
+    object.coupled = true;
+    objects.push_back(std::move(object));
+  }
+  return makeSimModel(std::move(objects), std::move(staticVoxmap), options.sim);
+}
+
+}  // namespace voxhap

@@ -1,0 +1,49 @@
+#pragma once
+/// From a loaded Scene to a SimModel: the static objects merged into one voxmap (the
+/// static environment), each named moving object given its rigid body (mass and inertia
+/// from its closed meshes), pointshell and voxmap. Load time only; allocates; throws
+/// voxhap::Error naming the object.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "haptics/core/progress.h"
+#include "haptics/pointshell/pointshell.h"
+#include "haptics/scene/scene.h"
+#include "haptics/sim/sim_model.h"
+#include "haptics/voxel/voxelizer.h"
+
+namespace voxhap {
+
+/// How to voxelize a set of objects (one voxmap for all of them), e.g. from a cache.
+using VoxelizeObjectsFn = std::function<Voxmap(std::span<const SceneObject* const> objects,
+                                               const VoxelizeOptions& options, const ProgressFn& progress)>;
+/// How to build the pointshell of one object, e.g. from a cache.
+using PointshellFn = std::function<Pointshell(const SceneObject& object, const PointshellOptions& options,
+                                              const ProgressFn& progress)>;
+
+/// Voxelizes `objects` as one voxmap, now (cache off).
+Voxmap voxelizeObjects(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
+                       const ProgressFn& progress);
+/// Builds the pointshell of `object`, now (cache off).
+Pointshell pointshellOf(const SceneObject& object, const PointshellOptions& options, const ProgressFn& progress);
+
+struct SceneModelOptions {
+  SimOptions sim;
+  double staticVoxelSizeM = 0.0;  ///< voxel size of the static environment, m
+  double pointSpacingM = 0.0;     ///< point spacing (and voxel size) of the moving objects, m
+  int bitsPerField = 4;
+  /// Points displaced along their normals, m (negative: inward; mating surfaces).
+  double pointDisplacementM = 0.0;
+  VoxelizeObjectsFn voxelizeFn = voxelizeObjects;
+  PointshellFn pointshellFn = pointshellOf;
+};
+
+/// The model of `scene` with `movingNames` moving (each coupled to a handle) and every
+/// other object static. Throws voxhap::Error for an unknown or repeated name, or an
+/// object whose mesh is not closed.
+SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& movingNames,
+                         const SceneModelOptions& options, const ProgressFn& progress = {});
+
+}  // namespace voxhap

@@ -1,0 +1,104 @@
+#include "haptics/sim/sim_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "haptics/core/error.h"
+
+namespace voxhap {
+namespace {
+
+bool hasVoxels(const Voxmap& voxmap) { return voxmap.grid().voxelSizeM > 0.0; }
+
+/// The inertia a contact on `object` sees at its worst, kg: the smaller of the mass and
+/// 1 / max over points r and unit directions u of (r × u)ᵀ·I⁻¹·(r × u), the rotational
+/// response of the body to a unit force at r (r from the centre of mass, local frame).
+/// With k_total = M·ω_c² no rotation of the body then responds to a contact spring faster
+/// than ω_c, however long and thin it is (a bound by I_min / r_max² would make a rod's
+/// contacts a hundred times softer than they need be).
+double contactInertiaKg(const MovingObjectModel& object) {
+  const glm::dmat3& inverseInertia = object.body.inverseInertiaBody;
+  double worst = 0.0;
+  for (const glm::vec3& p : object.shell.positionsLocal) {
+    const glm::dvec3 r = glm::dvec3(p) - object.body.comLocal;
+    // [r]x, the matrix of u -> r x u (GLM is column-major)
+    const glm::dmat3 cross(0.0, r.z, -r.y, -r.z, 0.0, r.x, r.y, -r.x, 0.0);
+    worst = std::max(worst, symmetricEigenvalues(glm::transpose(cross) * inverseInertia * cross).z);
+  }
+  return worst > 0.0 ? std::min(object.body.massKg, 1.0 / worst) : object.body.massKg;
+}
+
+ContactParams pairParams(const SimModel& model, const PairModel& pair, const SimOptions& options) {
+  const Voxmap& voxmap = model.voxmapOf(pair);
+  if (options.forceLayer < 1 || options.forceLayer > voxmap.encoding().maxValue()) {
+    throw Error("force layer " + std::to_string(options.forceLayer) + " is outside the voxmap's values 1 … " +
+                std::to_string(voxmap.encoding().maxValue()));
+  }
+  double inertia = contactInertiaKg(model.objects[static_cast<std::size_t>(pair.shellObject)]);
+  if (pair.voxmapObject != kStaticEnvironment) {
+    inertia = std::min(inertia, contactInertiaKg(model.objects[static_cast<std::size_t>(pair.voxmapObject)]));
+  }
+  const double omega = kContactFrequencyTimesDt / options.dtS;
+  ContactParams params;
+  params.forceLayer = options.forceLayer;
+  params.geometricalAwareness = options.geometricalAwareness;
+  params.pointStiffnessNPerM = inertia * omega * omega / kStiffContacts;
+  params.pointDampingNsPerM = 2.0 * kContactDampingRatio * inertia * omega / kStiffContacts;
+  return params;
+}
+
+}  // namespace
+
+double SimModel::maxTravelM(int object) const {
+  double travel = std::numeric_limits<double>::infinity();
+  for (const PairModel& pair : pairs) {
+    if (pair.shellObject != object && pair.voxmapObject != object) continue;
+    const double half = 0.5 * voxmapOf(pair).grid().voxelSizeM;
+    travel = std::min(travel, pair.voxmapObject == kStaticEnvironment ? half : 0.5 * half);
+  }
+  return travel;
+}
+
+SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxmap> staticVoxmap,
+                      const SimOptions& options) {
+  if (!(options.dtS > 0.0) || !std::isfinite(options.dtS)) throw Error("frame period must be positive");
+  SimModel model;
+  model.dtS = options.dtS;
+  model.gravityWorld = options.gravityWorld;
+  model.staticVoxmap = std::move(staticVoxmap);
+  model.deviceLimits = options.deviceLimits;
+  model.objects = std::move(objects);
+
+  for (MovingObjectModel& object : model.objects) {
+    if (object.shell.size() == 0) throw Error(object.name + ": the pointshell has no points");
+    object.shellRadiusM = object.shell.radiusAbout(object.body.comLocal);
+    Bounds bounds;
+    for (const glm::vec3& p : object.shell.positionsLocal) bounds.add(glm::dvec3(p));
+    object.shellCentreLocal = 0.5 * (bounds.min + bounds.max);
+    object.shellBoundRadiusM = object.shell.radiusAbout(object.shellCentreLocal);
+    if (object.coupled) object.gains = defaultCouplingGains(object.body, options.dtS, options.deviceLimits);
+  }
+
+  const int n = static_cast<int>(model.objects.size());
+  for (int i = 0; i < n; ++i) {
+    if (model.staticVoxmap) model.pairs.push_back({i, kStaticEnvironment, {}});
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const MovingObjectModel& a = model.objects[static_cast<std::size_t>(i)];
+      const MovingObjectModel& b = model.objects[static_cast<std::size_t>(j)];
+      const bool aIsShell = a.shell.size() <= b.shell.size();
+      const MovingObjectModel& voxels = aIsShell ? b : a;
+      if (!hasVoxels(voxels.voxmap)) throw Error(voxels.name + ": a moving object needs a voxmap to collide with " +
+                                                 (aIsShell ? a.name : b.name));
+      model.pairs.push_back({aIsShell ? i : j, aIsShell ? j : i, {}});
+    }
+  }
+  for (PairModel& pair : model.pairs) pair.params = pairParams(model, pair, options);
+  return model;
+}
+
+}  // namespace voxhap

@@ -1,0 +1,88 @@
+#pragma once
+/// The read-only model of a haptic simulation (DESIGN §4.7, paper §2.1): the static
+/// environment as one voxmap, the moving objects with their rigid-body data,
+/// pointshells and voxmaps, and every pair that can touch (paper Eq. 1:
+/// n(n−1)/2 among the n moving objects, plus each against the static environment).
+/// In a pair of moving objects the one with fewer points is the pointshell.
+///
+/// Built once at load time (allocates, may throw voxhap::Error); read by step().
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "haptics/collide/contact_params.h"
+#include "haptics/dynamics/rigid_body.h"
+#include "haptics/dynamics/virtual_coupling.h"
+#include "haptics/pointshell/pointshell.h"
+#include "haptics/voxel/voxmap.h"
+
+namespace voxhap {
+
+/// Index that stands for the static environment in a pair.
+inline constexpr int kStaticEnvironment = -1;
+
+/// Contact stiffness of a pair, as ω_c·dt: k_total = M·ω_c² with M the smallest inertia
+/// a contact force at any point of either body meets (sim_model.cpp), so that neither
+/// translation nor rotation of either body sees a contact frequency above ω_c. With the coupling's (ω·dt)² = 0.0625 and damping term 0.5 (virtual_coupling.cpp),
+/// a contact at (0.5)² = 0.25 with damping ratio 0.5 adds a = 0.25 and c = 0.5: the sum
+/// a + 2c = 1.31 stays far inside the semi-implicit Euler bound a + 2c < 4.
+inline constexpr double kContactFrequencyTimesDt = 0.5;
+/// Damping ratio of the contact spring at its capped total stiffness.
+inline constexpr double kContactDampingRatio = 0.5;
+
+/// One moving object: read-only data.
+struct MovingObjectModel {
+  std::string name;
+  RigidBodyModel body;
+  Pointshell shell;              ///< object-local frame
+  Voxmap voxmap;                 ///< object-local frame; empty grid when never the voxmap of a pair
+  double shellRadiusM = 0.0;     ///< largest distance of a point from the centre of mass, m
+  glm::dvec3 shellCentreLocal{0.0};  ///< centre of the pointshell's bounding sphere, m
+  double shellBoundRadiusM = 0.0;    ///< radius of that sphere, m
+  bool coupled = false;          ///< a handle drives it through a virtual coupling
+  CouplingGains gains;           ///< of that coupling
+};
+
+/// One pair that can touch.
+struct PairModel {
+  int shellObject = 0;                   ///< index of the moving object sampled as points
+  int voxmapObject = kStaticEnvironment;  ///< index of the moving object sampled as voxels, or static
+  ContactParams params;
+};
+
+struct SimModel {
+  double dtS = 1e-3;                  ///< frame period, s
+  glm::dvec3 gravityWorld{0.0};       ///< m/s²; zero: parts are held, not dropped
+  std::optional<Voxmap> staticVoxmap;  ///< world frame; none: nothing static collides
+  std::vector<MovingObjectModel> objects;
+  std::vector<PairModel> pairs;
+  DeviceLimits deviceLimits;
+
+  const Voxmap& voxmapOf(const PairModel& pair) const {
+    return pair.voxmapObject == kStaticEnvironment ? *staticVoxmap
+                                                   : objects[static_cast<std::size_t>(pair.voxmapObject)].voxmap;
+  }
+  /// Most any point of object `i` may move in a frame, m: half the finest voxel of its
+  /// pairs, halved again when both objects of the pair move.
+  double maxTravelM(int object) const;
+};
+
+/// Options of makeSimModel.
+struct SimOptions {
+  double dtS = 1e-3;
+  glm::dvec3 gravityWorld{0.0};
+  std::uint8_t forceLayer = kDefaultForceLayer;
+  bool geometricalAwareness = true;
+  DeviceLimits deviceLimits;
+};
+
+/// Completes `objects` (rigid body, pointshell and voxmap set by the caller; `coupled`
+/// too) into a model: shell radii, coupling gains, the pairs and their contact
+/// stiffness. Throws voxhap::Error when a pair of moving objects lacks the voxmap it
+/// needs or the force layer is outside the voxmaps' range.
+SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxmap> staticVoxmap,
+                      const SimOptions& options);
+
+}  // namespace voxhap

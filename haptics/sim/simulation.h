@@ -1,0 +1,68 @@
+#pragma once
+/// One 1 kHz frame of the haptic simulation (DESIGN §4.4, §4.7):
+///   1. each coupled object feels its handle through the virtual coupling;
+///   2. every pair in range samples its points and sums tangent-plane forces, applied
+///      equal and opposite (a pair whose bounding sphere misses the voxmap's grid costs
+///      no point test);
+///   3. each object is integrated as a free rigid body (gravity, coupling, contacts);
+///   4. its motion is limited to MaxTravel (at most half a voxel, paper §5), which the
+///      user feels as viscosity;
+///   5. the device of each coupled object gets the negated coupling wrench, clamped.
+/// All buffers live in SimState, sized by makeSimState: step() never allocates, locks,
+/// throws or prints. Deterministic: same model, state and handles, same bits.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "haptics/collide/point_sampler.h"
+#include "haptics/device/scripted_device.h"
+#include "haptics/sim/sim_model.h"
+
+namespace voxhap {
+
+/// The handle of one coupled object this frame.
+struct HandleInput {
+  Pose poseWorld;            ///< target local → world pose of the object
+  HandleVelocity velocity;   ///< world frame
+};
+
+/// What happened to one moving object in the last frame.
+struct ObjectFrame {
+  glm::dvec3 contactForceWorld{0.0};   ///< sum over its pairs, N
+  glm::dvec3 contactTorqueWorld{0.0};  ///< about its centre of mass, N·m
+  CouplingWrench feedback;             ///< to its device (zero when not coupled)
+  std::uint32_t contacts = 0;          ///< its points (or points against it) in the force layer
+  std::uint32_t tested = 0;            ///< point tests in the pairs where it is the pointshell
+  double maxDepthM = 0.0;              ///< deepest tangent-plane depth of its contacts, m
+  bool travelLimited = false;          ///< MaxTravel held it back
+};
+
+/// Everything that changes per frame.
+struct SimState {
+  std::uint64_t frame = 0;
+  double timeS = 0.0;
+  std::vector<RigidBodyState> bodies;  ///< per moving object
+  std::vector<ObjectFrame> last;       ///< per moving object, the frame just stepped
+  std::uint64_t pairsSkipped = 0;      ///< pair-frames out of range, in all
+  std::uint64_t travelLimitedFrames = 0;  ///< object-frames that MaxTravel held back
+  std::vector<PointContact> scratch;   ///< room for the largest pointshell's contacts
+};
+
+/// A state with every object at rest where the scene file puts it.
+SimState makeSimState(const SimModel& model);
+
+/// Advances `state` by one frame. `handles[i]` drives object i when it is coupled (entries
+/// of uncoupled objects are ignored); size = number of objects.
+void step(const SimModel& model, SimState& state, std::span<const HandleInput> handles) noexcept;
+
+/// One frame driven by devices: reads `devices[i]` (nullptr: object i is free) at the
+/// frame's end time into `handles` (same size, caller-owned), steps, and writes each
+/// device its feedback.
+void stepWithDevices(const SimModel& model, SimState& state, std::span<HapticDevice* const> devices,
+                     std::span<HandleInput> handles) noexcept;
+
+/// The world pose of object `object` (local → world).
+Pose objectPose(const SimModel& model, const SimState& state, std::size_t object) noexcept;
+
+}  // namespace voxhap

@@ -1,0 +1,116 @@
+#pragma once
+/// Versioned, checksummed cache files for voxel data (DESIGN §4.6).
+///
+/// Layout, little-endian:
+///   header   8 bytes magic "VOXHAPC\n" | u32 format version | u32 kind |
+///            16 bytes key (what the content was made from) | u64 payload bytes
+///   payload  whatever the writer put, arrays as a u64 element count then the elements
+///   trailer  16 bytes: ContentHash digest of the payload
+///
+/// The writer streams into a temporary file in the destination folder and renames it
+/// over the final name on commit (atomic on POSIX), so a reader sees a whole file or
+/// none. The reader checks the header and the file's length before reading anything,
+/// never allocates more than the file holds, and checks the checksum at the end; any
+/// problem is a CacheFileError whose message completes "cache file PATH …".
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "haptics/core/content_hash.h"
+
+namespace voxhap {
+
+/// Bump whenever what a cache file holds, or how it is made, changes.
+inline constexpr std::uint32_t kCacheFormatVersion = 1;
+
+/// What a cache file holds.
+enum class CacheKind : std::uint32_t { Voxmap = 1, Pointshell = 2 };
+
+/// A cache file that cannot be used; what() reads as the end of "cache file X …",
+/// e.g. "is corrupt (checksum mismatch)".
+class CacheFileError : public std::runtime_error {
+public:
+  explicit CacheFileError(const std::string& problem) : std::runtime_error(problem) {}
+};
+
+class CacheFileWriter {
+public:
+  /// Starts writing the cache file `path` (its folder must exist). Throws voxhap::Error
+  /// naming the file when the temporary file cannot be created.
+  CacheFileWriter(std::filesystem::path path, CacheKind kind, const Digest128& key);
+  /// Removes the temporary file unless commit() succeeded.
+  ~CacheFileWriter();
+  CacheFileWriter(const CacheFileWriter&) = delete;
+  CacheFileWriter& operator=(const CacheFileWriter&) = delete;
+
+  void write(const void* data, std::size_t bytes);
+  template <typename T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    write(&value, sizeof value);
+  }
+  template <typename T>
+  void putArray(std::span<const T> values) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put(static_cast<std::uint64_t>(values.size()));
+    write(values.data(), values.size_bytes());
+  }
+
+  /// Writes the trailer and renames the file into place. Throws voxhap::Error naming the
+  /// file on any I/O failure (disk full, folder not writable).
+  void commit();
+
+private:
+  std::filesystem::path path_;
+  std::filesystem::path tempPath_;
+  std::ofstream out_;
+  ContentHash checksum_;
+  std::uint64_t payloadBytes_ = 0;
+  bool committed_ = false;
+};
+
+class CacheFileReader {
+public:
+  /// Opens `path` and checks magic, format version, kind, key and length. Throws
+  /// CacheFileError on any mismatch, std::filesystem errors aside (a missing file is
+  /// the caller's to check).
+  CacheFileReader(const std::filesystem::path& path, CacheKind kind, const Digest128& key);
+
+  /// Reads `bytes` payload bytes; throws CacheFileError past the payload's end.
+  void read(void* data, std::size_t bytes);
+  template <typename T>
+  T get() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    T value;
+    read(&value, sizeof value);
+    return value;
+  }
+  /// Reads an array written by putArray; its size is checked against what is left of
+  /// the payload before anything is allocated.
+  template <typename T>
+  std::vector<T> getArray() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto count = get<std::uint64_t>();
+    if (count > remaining_ / sizeof(T)) throw CacheFileError("is corrupt (an array runs past the end)");
+    std::vector<T> values(static_cast<std::size_t>(count));
+    read(values.data(), values.size() * sizeof(T));
+    return values;
+  }
+
+  /// Checks that the whole payload was read and that its checksum matches.
+  void finish();
+
+private:
+  std::ifstream in_;
+  ContentHash checksum_;
+  std::uint64_t remaining_ = 0;
+};
+
+}  // namespace voxhap

@@ -1,0 +1,246 @@
+#include "haptics/voxel/voxel_cache.h"
+
+#include <array>
+#include <chrono>
+#include <functional>
+
+#include "haptics/core/error.h"
+#include "haptics/core/parallel.h"
+#include "haptics/geometry/quasi_planar.h"
+#include "haptics/voxel/cache_file.h"
+
+namespace voxhap {
+namespace {
+
+namespace fs = std::filesystem;
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// The parts of some objects, in order, with their quasi-planar features.
+struct ObjectParts {
+  std::vector<const TriangleMesh*> meshes;
+  std::vector<MeshFeatures> features;
+};
+
+std::vector<const TriangleMesh*> meshesOf(std::span<const SceneObject* const> objects) {
+  std::vector<const TriangleMesh*> meshes;
+  for (const SceneObject* object : objects) {
+    for (const Part& part : object->parts) meshes.push_back(&part.mesh);
+  }
+  return meshes;
+}
+
+/// Features of every part at `voxelSizeM`, one part per task: the same whatever the thread count.
+ObjectParts partsWithFeatures(std::span<const SceneObject* const> objects, double voxelSizeM, int threads) {
+  ObjectParts parts{meshesOf(objects), {}};
+  parts.features.resize(parts.meshes.size());
+  parallelFor(parts.meshes.size(), threads,
+              [&](std::size_t i) { parts.features[i] = extractFeatures(*parts.meshes[i], voxelSizeM); });
+  return parts;
+}
+
+/// A hash of what the cache key always covers: format version, kind and every part's geometry.
+ContentHash geometryHash(CacheKind kind, std::span<const SceneObject* const> objects) {
+  ContentHash hash;
+  hash.add(kCacheFormatVersion);
+  hash.add(static_cast<std::uint32_t>(kind));
+  const std::vector<const TriangleMesh*> meshes = meshesOf(objects);
+  hash.add(static_cast<std::uint64_t>(meshes.size()));
+  for (const TriangleMesh* mesh : meshes) {
+    hash.addArray(std::span<const glm::vec3>(mesh->positionsWorld));
+    hash.addArray(std::span<const glm::uvec3>(mesh->triangles));
+  }
+  return hash;
+}
+
+/// Runs `load` on the cache file when it holds the key, else `build` then `save`; fills
+/// the timings, the hit flag and warnings of `result` (a CachedVoxelization or CachedPointshell).
+template <typename Result>
+void loadOrBuild(Result& result, const CacheOptions& cache, const std::string& fileName, CacheKind kind,
+                 const Digest128& key, const std::function<void(CacheFileReader&)>& load,
+                 const std::function<void()>& build, const std::function<void(CacheFileWriter&)>& save) {
+  const fs::path file = cache.directory / fileName;
+  if (cache.enabled) {
+    result.cacheFile = file;
+    std::error_code ec;
+    if (fs::exists(file, ec)) {
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        CacheFileReader reader(file, kind, key);
+        load(reader);
+        reader.finish();
+        result.cacheHit = true;
+        result.loadS = secondsSince(start);
+        return;
+      } catch (const CacheFileError& e) {
+        result.warnings.push_back("cache file " + file.string() + " " + e.what() + "; rebuilt");
+      } catch (const fs::filesystem_error& e) {
+        result.warnings.push_back("cache file " + file.string() + " cannot be read (" + e.code().message() +
+                                  "); rebuilt");
+      }
+    }
+  }
+  build();
+  if (!cache.enabled) return;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    std::error_code ec;
+    fs::create_directories(cache.directory, ec);
+    if (ec) throw Error(cache.directory.string() + ": cannot create the cache folder: " + ec.message());
+    CacheFileWriter writer(file, kind, key);
+    save(writer);
+    writer.commit();
+  } catch (const Error& e) {
+    result.warnings.push_back(std::string("not cached: ") + e.what());
+  }
+  result.saveS = secondsSince(start);
+}
+
+// ---- voxmaps ----
+
+void putGrid(CacheFileWriter& w, const VoxelGrid& grid, const VoxelEncoding& encoding) {
+  w.put(grid.originLocal);
+  w.put(grid.voxelSizeM);
+  w.put(grid.dimsHyper);
+  w.put(static_cast<std::int32_t>(encoding.bitsPerField));
+  w.put(static_cast<std::int32_t>(encoding.rangeVoxels));
+}
+
+/// The stats' counters in file order.
+std::array<std::uint64_t*, 11> counters(VoxelizeStats& s) {
+  return {&s.interiorVoxels, &s.surfaceVoxels, &s.distanceVoxels,     &s.edgeVoxels,
+          &s.vertexVoxels,   &s.vertexPoints,  &s.edgePoints,         &s.surfacePoints,
+          &s.triangles,      &s.polygonsAfterMerge, &s.voteDisagreements};
+}
+
+void saveVoxelized(CacheFileWriter& w, const VoxelizedObject& v) {
+  putGrid(w, v.voxmap.grid(), v.voxmap.encoding());
+  VoxelizeStats stats = v.stats;
+  for (const std::uint64_t* c : counters(stats)) w.put(*c);
+  w.put(static_cast<std::uint8_t>(stats.firstDisagreementLocal.has_value()));
+  w.put(stats.firstDisagreementLocal.value_or(glm::dvec3(0.0)));
+  w.putArray(v.voxmap.hyperEntries());
+  w.putArray(v.voxmap.chunkEntries());
+  w.putArray(v.voxmap.voxelBytes());
+  w.putArray(v.voxmap.chunkDistances());
+}
+
+VoxelizedObject loadVoxelized(CacheFileReader& r, const VoxelizeOptions& options) {
+  VoxelGrid grid;
+  grid.originLocal = r.get<glm::dvec3>();
+  grid.voxelSizeM = r.get<double>();
+  grid.dimsHyper = r.get<glm::ivec3>();
+  VoxelEncoding encoding;
+  encoding.bitsPerField = r.get<std::int32_t>();
+  encoding.rangeVoxels = r.get<std::int32_t>();
+  if (grid.voxelSizeM != options.voxelSizeM || encoding.bitsPerField != options.encoding.bitsPerField ||
+      encoding.rangeVoxels != options.encoding.rangeVoxels) {
+    throw CacheFileError("holds other data (parameters differ)");
+  }
+  VoxelizedObject v;
+  for (std::uint64_t* c : counters(v.stats)) *c = r.get<std::uint64_t>();
+  const bool hasDisagreement = r.get<std::uint8_t>() != 0;
+  const auto disagreement = r.get<glm::dvec3>();
+  if (hasDisagreement) v.stats.firstDisagreementLocal = disagreement;
+  auto hyper = r.getArray<std::uint32_t>();
+  auto chunks = r.getArray<std::uint32_t>();
+  auto voxelBytes = r.getArray<std::uint8_t>();
+  auto chunkDistances = r.getArray<std::uint8_t>();
+  const std::string problem =
+      Voxmap::validate(grid, encoding, hyper, chunks, voxelBytes.size(), chunkDistances.size());
+  if (!problem.empty()) throw CacheFileError("is corrupt (" + problem + ")");
+  v.voxmap = Voxmap(grid, encoding, std::move(hyper), std::move(chunks), std::move(voxelBytes),
+                    std::move(chunkDistances));
+  return v;
+}
+
+// ---- pointshells ----
+
+void savePointshell(CacheFileWriter& w, const Pointshell& p) {
+  w.put(p.pointSpacingM);
+  w.putArray(std::span<const glm::vec3>(p.positionsLocal));
+  w.putArray(std::span<const glm::vec3>(p.normalsLocal));
+  w.putArray(std::span<const PointFeature>(p.features));
+  w.putArray(std::span<const std::uint32_t>(p.chunkBegin));
+  w.putArray(std::span<const glm::vec3>(p.chunkCentroidsLocal));
+}
+
+Pointshell loadPointshell(CacheFileReader& r, const PointshellOptions& options) {
+  Pointshell p;
+  p.pointSpacingM = r.get<double>();
+  if (p.pointSpacingM != options.pointSpacingM) throw CacheFileError("holds other data (parameters differ)");
+  p.positionsLocal = r.getArray<glm::vec3>();
+  p.normalsLocal = r.getArray<glm::vec3>();
+  p.features = r.getArray<PointFeature>();
+  p.chunkBegin = r.getArray<std::uint32_t>();
+  p.chunkCentroidsLocal = r.getArray<glm::vec3>();
+  const std::size_t n = p.positionsLocal.size();
+  bool valid = p.normalsLocal.size() == n && p.features.size() == n && !p.chunkBegin.empty() &&
+               p.chunkBegin.front() == 0 && p.chunkBegin.back() == n &&
+               p.chunkCentroidsLocal.size() + 1 == p.chunkBegin.size();
+  for (std::size_t c = 1; valid && c < p.chunkBegin.size(); ++c) valid = p.chunkBegin[c - 1] <= p.chunkBegin[c];
+  for (std::size_t i = 0; valid && i < n; ++i) valid = p.features[i] <= PointFeature::Vertex;
+  if (!valid) throw CacheFileError("is corrupt (inconsistent pointshell arrays)");
+  return p;
+}
+
+ProgressFn stage(const ProgressFn& progress, double begin, double end) {
+  if (!progress) return {};
+  return [progress, begin, end](double f) { progress(begin + (end - begin) * f); };
+}
+
+}  // namespace
+
+CachedVoxelization voxelizeCached(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
+                                  const CacheOptions& cache, const ProgressFn& progress) {
+  ContentHash hash = geometryHash(CacheKind::Voxmap, objects);
+  hash.addDouble(options.voxelSizeM);
+  hash.add(static_cast<std::int32_t>(options.encoding.bitsPerField));
+  hash.add(static_cast<std::int32_t>(options.encoding.rangeVoxels));
+  hash.add(static_cast<std::uint8_t>(options.buildFeatureFields));
+  const Digest128 key = hash.digest();
+
+  checkVoxelizeOptions(options);
+  CachedVoxelization result;
+  loadOrBuild(
+      result, cache, "voxmap-" + key.hex() + ".vxc", CacheKind::Voxmap, key,
+      [&](CacheFileReader& r) { result.voxelized = loadVoxelized(r, options); },
+      [&] {
+        const auto start = std::chrono::steady_clock::now();
+        const ObjectParts parts = partsWithFeatures(objects, options.voxelSizeM, options.threads);
+        if (progress) progress(0.02);
+        result.voxelized = voxelize(parts.meshes, parts.features, options, stage(progress, 0.02, 1.0));
+        result.voxelizeS = secondsSince(start);
+      },
+      [&](CacheFileWriter& w) { saveVoxelized(w, result.voxelized); });
+  if (progress) progress(1.0);
+  return result;
+}
+
+CachedPointshell pointshellCached(std::span<const SceneObject* const> objects, const PointshellOptions& options,
+                                  const CacheOptions& cache, const ProgressFn& progress) {
+  ContentHash hash = geometryHash(CacheKind::Pointshell, objects);
+  hash.addDouble(options.pointSpacingM);
+  hash.addDouble(options.displacementM);
+  const Digest128 key = hash.digest();
+
+  checkPointshellOptions(options);
+  CachedPointshell result;
+  loadOrBuild(
+      result, cache, "pointshell-" + key.hex() + ".vxc", CacheKind::Pointshell, key,
+      [&](CacheFileReader& r) { result.pointshell = loadPointshell(r, options); },
+      [&] {
+        const auto start = std::chrono::steady_clock::now();
+        const ObjectParts parts = partsWithFeatures(objects, options.pointSpacingM, options.threads);
+        if (progress) progress(0.02);
+        result.pointshell = buildPointshell(parts.meshes, parts.features, options, stage(progress, 0.02, 1.0));
+        result.buildS = secondsSince(start);
+      },
+      [&](CacheFileWriter& w) { savePointshell(w, result.pointshell); });
+  if (progress) progress(1.0);
+  return result;
+}
+
+}  // namespace voxhap

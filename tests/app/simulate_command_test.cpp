@@ -1,0 +1,61 @@
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/cli_runner.h"
+
+namespace voxhap::test {
+namespace {
+
+class SimulateCommand : public CliTest {
+protected:
+  std::string writeScript(const std::string& text) const {
+    const std::filesystem::path file = dir_ / "script.txt";
+    std::ofstream(file) << text;
+    return file.string();
+  }
+};
+
+TEST_F(SimulateCommand, BallTurnsInItsSocketWritesTheTraceAndASummary) {
+  const std::string script = writeScript("# a small turn\n0 1 0 0 0 0 0 0\n0.05 0.9998 0.02 0 0 0 0 0\n");
+  const CliRun r = voxhap({"simulate", asset("ball-and-socket.glb"), "--move", "ball", "--script", script,
+                           "--voxel-size", "1mm", "--point-offset=-0.5mm", "--trace", "trace.csv", "--json"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["frames"], 50);
+  EXPECT_GT(summary["max_contacts"].get<int>(), 0);
+  for (const char* key : {"p50", "p99", "max"}) EXPECT_TRUE(summary["compute_us"].contains(key)) << key;
+  std::ifstream trace(dir_ / "trace.csv");
+  std::string header;
+  std::getline(trace, header);
+  EXPECT_EQ(header, "frame,t_s,object,qw,qx,qy,qz,tx,ty,tz,fx,fy,fz,taux,tauy,tauz,contacts,tested,compute_us");
+  int rows = 0;
+  for (std::string line; std::getline(trace, line);) ++rows;
+  EXPECT_EQ(rows, 50);
+}
+
+TEST_F(SimulateCommand, MalformedScriptNamesFileAndLine) {
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n0.1 1 0 0 0 0 0\n");
+  const CliRun r = voxhap({"simulate", asset("ball-and-socket.glb"), "--move", "ball", "--script", script});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("script.txt:2"), std::string::npos) << r.err;
+}
+
+TEST_F(SimulateCommand, UnknownObjectIsNamed) {
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n");
+  const CliRun r = voxhap({"simulate", asset("ball-and-socket.glb"), "--move", "wrench", "--script", script});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("wrench"), std::string::npos) << r.err;
+}
+
+TEST_F(SimulateCommand, BadVoxelSizeIsAUsageError) {
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n");
+  const CliRun r = voxhap({"simulate", asset("ball-and-socket.glb"), "--move", "ball", "--script", script,
+                           "--voxel-size", "-1mm"});
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("voxel-size"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace voxhap::test
