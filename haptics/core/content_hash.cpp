@@ -56,6 +56,7 @@ void ContentHash::stripe(const unsigned char* bytes32) {
 
 void ContentHash::update(const void* data, std::size_t bytes) {
   const auto* p = static_cast<const unsigned char*>(data);
+  if (bytes == 0) return;  // data may be null then
   totalBytes_ += bytes;
   if (pendingBytes_ > 0) {
     const std::size_t take = std::min(bytes, pending_.size() - pendingBytes_);

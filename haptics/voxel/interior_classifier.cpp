@@ -109,11 +109,28 @@ InteriorClassifier::AxisRows InteriorClassifier::castRows(int axis, std::span<co
   return rows;
 }
 
+namespace {
+
+/// The first voxel index along a row whose centre lies beyond a crossing at `tVoxels`: the
+/// least j with float(j) + 0.5f > tVoxels, compared in float as the voxel walk would.
+int firstVoxelAfter(float tVoxels) {
+  int j = static_cast<int>(std::floor(tVoxels)) - 1;
+  while (static_cast<float>(j) + 0.5f <= tVoxels) ++j;
+  while (static_cast<float>(j - 1) + 0.5f > tVoxels) --j;
+  return j;
+}
+
+}  // namespace
+
 void InteriorClassifier::addVotes(const AxisRows& rows, const glm::ivec3& lo, const glm::ivec3& size,
                                   std::vector<std::uint8_t>& out) const {
   const int a = rows.axis;
   const int b = (a + 1) % 3;
   const int c = (a + 2) % 3;
+  const std::size_t strides[3] = {1, static_cast<std::size_t>(size.x),
+                                  static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y)};
+  const int first = lo[a];
+  const int end = lo[a] + size[a];
   std::vector<std::uint8_t> partInside(partCount_, 0);
   for (int jc = lo[c]; jc < lo[c] + size[c]; ++jc) {
     for (int jb = lo[b]; jb < lo[b] + size[b]; ++jb) {
@@ -121,28 +138,30 @@ void InteriorClassifier::addVotes(const AxisRows& rows, const glm::ivec3& lo, co
       const int rc = jc - rows.lo.y;
       if (rb < 0 || rc < 0 || rb >= rows.size.x || rc >= rows.size.y) continue;  // no surface on this row
       const std::size_t row = static_cast<std::size_t>(rb) + static_cast<std::size_t>(rows.size.x) * static_cast<std::size_t>(rc);
-      const Crossing* first = rows.crossings.data() + rows.begin[row];
+      const Crossing* next = rows.crossings.data() + rows.begin[row];
       const Crossing* last = rows.crossings.data() + rows.begin[row + 1];
-      const Crossing* next = first;
+      if (next == last) continue;
+      std::uint8_t* line = out.data() + static_cast<std::size_t>(jb - lo[b]) * strides[b] +
+                           static_cast<std::size_t>(jc - lo[c]) * strides[c];
+      // runs of voxels between crossings: inside while any part is
       int partsInside = 0;
-      glm::ivec3 v;
-      v[b] = jb;
-      v[c] = jc;
-      for (int ja = lo[a]; ja < lo[a] + size[a]; ++ja) {
-        const float centre = static_cast<float>(ja) + 0.5f;
-        for (; next != last && next->tVoxels < centre; ++next) {
-          std::uint8_t& state = partInside[next->part];
-          state ^= 1u;
-          partsInside += state ? 1 : -1;
-        }
+      int runStart = first;
+      for (; next != last; ++next) {
+        const int runEnd = std::min(firstVoxelAfter(next->tVoxels), end);
         if (partsInside > 0) {
-          v[a] = ja;
-          const glm::ivec3 r = v - lo;
-          ++out[static_cast<std::size_t>(r.x) +
-                static_cast<std::size_t>(size.x) * (static_cast<std::size_t>(r.y) + static_cast<std::size_t>(size.y) * static_cast<std::size_t>(r.z))];
+          for (int ja = std::max(runStart, first); ja < runEnd; ++ja) ++line[static_cast<std::size_t>(ja - first) * strides[a]];
         }
+        runStart = std::max(runStart, runEnd);
+        std::uint8_t& state = partInside[next->part];
+        state ^= 1u;
+        partsInside += state ? 1 : -1;
+        if (runStart >= end) break;
       }
-      for (const Crossing* k = first; k != next; ++k) partInside[k->part] = 0;
+      if (partsInside > 0) {
+        for (int ja = runStart; ja < end; ++ja) ++line[static_cast<std::size_t>(ja - first) * strides[a]];
+      }
+      for (const Crossing* k = rows.crossings.data() + rows.begin[row]; k != next; ++k) partInside[k->part] = 0;
+      if (next != last) partInside[next->part] = 0;
     }
   }
 }

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include <glm/common.hpp>
@@ -15,6 +17,7 @@
 #include "haptics/geometry/embree_scene.h"
 #include "haptics/voxel/chunk_distance.h"
 #include "haptics/voxel/feature_rasterizer.h"
+#include "haptics/voxel/hyperchunk_transform.h"
 #include "haptics/voxel/interior_classifier.h"
 
 namespace voxhap {
@@ -55,71 +58,6 @@ struct HyperResult {
   VoxelizeStats stats;                      // voxel counts and votes only
 };
 
-/// Chessboard distance transforms of one hyperchunk and its halo. Each field's
-/// distance is capped at range + 1 ("far"). Buffers are reused across hyperchunks.
-class HyperchunkTransform {
-public:
-  explicit HyperchunkTransform(int range) : range_(range), n_(kHyperEdgeVoxels + 2 * range) {}
-
-  /// `sources` holds N³ flags (x fastest), N = 64 + 2·range; writes 64³ distances.
-  void run(const std::vector<std::uint8_t>& sources, std::vector<std::uint8_t>& out) {
-    const int c = kHyperEdgeVoxels;
-    const int n = n_;
-    const int r = range_;
-    const std::uint8_t far = static_cast<std::uint8_t>(r + 1);
-    // x: distance along the row to the nearest source, kept for the core columns only
-    a_.assign(volume3(c, n, n), far);
-    for (int z = 0; z < n; ++z) {
-      for (int y = 0; y < n; ++y) {
-        const std::uint8_t* row = &sources[at3(0, y, z, n, n)];
-        std::uint8_t* outRow = &a_[at3(0, y, z, c, n)];
-        int last = -1000;
-        for (int x = 0; x < n; ++x) {
-          if (row[x]) last = x;
-          if (x >= r && x < r + c) outRow[x - r] = static_cast<std::uint8_t>(std::min(x - last, r + 1));
-        }
-        last = 1000 + n;
-        for (int x = n - 1; x >= r; --x) {
-          if (row[x]) last = x;
-          if (x < r + c) {
-            std::uint8_t& d = outRow[x - r];
-            d = std::min(d, static_cast<std::uint8_t>(std::min(last - x, r + 1)));
-          }
-        }
-      }
-    }
-    // y, then z: out = min over |k| ≤ r of max(|k|, in shifted by k)
-    b_.assign(volume3(c, c, n), far);
-    for (int z = 0; z < n; ++z) {
-      for (int y = 0; y < c; ++y) {
-        std::uint8_t* outRow = &b_[at3(0, y, z, c, c)];
-        for (int k = -r; k <= r; ++k) {
-          const std::uint8_t* in = &a_[at3(0, y + r + k, z, c, n)];
-          const std::uint8_t shift = static_cast<std::uint8_t>(k < 0 ? -k : k);
-          for (int x = 0; x < c; ++x) outRow[x] = std::min(outRow[x], std::max(shift, in[x]));
-        }
-      }
-    }
-    out.assign(volume3(c, c, c), far);
-    for (int z = 0; z < c; ++z) {
-      for (int k = -r; k <= r; ++k) {
-        const std::uint8_t shift = static_cast<std::uint8_t>(k < 0 ? -k : k);
-        const std::uint8_t* in = &b_[at3(0, 0, z + r + k, c, c)];
-        std::uint8_t* outLayer = &out[at3(0, 0, z, c, c)];
-        for (int i = 0; i < c * c; ++i) outLayer[i] = std::min(outLayer[i], std::max(shift, in[i]));
-      }
-    }
-  }
-
-  int haloSize() const { return n_; }
-
-private:
-  int range_;
-  int n_;
-  std::vector<std::uint8_t> a_;
-  std::vector<std::uint8_t> b_;
-};
-
 class Voxelizer {
 public:
   Voxelizer(const VoxelGrid& grid, const VoxelizeOptions& options, const HyperchunkBlocks<std::uint8_t>& features,
@@ -137,7 +75,14 @@ public:
     return false;
   }
 
-  HyperResult build(const glm::ivec3& ijkHyper, HyperchunkTransform& transform) const {
+  /// Buffers one thread reuses from hyperchunk to hyperchunk.
+  struct Scratch {
+    std::vector<std::uint8_t> bits;
+    std::vector<std::uint8_t> distance[kFieldCount];
+    std::vector<VoxelWord> words;
+  };
+
+  HyperResult build(const glm::ivec3& ijkHyper, HyperchunkTransform& transform, Scratch& scratch) const {
     HyperResult result;
     const VoxelEncoding& enc = options_.encoding;
     const glm::ivec3 core = ijkHyper * kHyperEdgeVoxels;
@@ -154,59 +99,34 @@ public:
     const int r = enc.rangeVoxels;
     const int n = transform.haloSize();
     const int c = kHyperEdgeVoxels;
-    const glm::ivec3 haloLo = core - r;
-    std::uint8_t bitsHere[kFieldCount] = {kSurfaceBit, kEdgeBit, kVertexBit};
+    const std::uint8_t bitsHere[kFieldCount] = {kSurfaceBit, kEdgeBit, kVertexBit};
     const int fields = options_.buildFeatureFields ? kFieldCount : 1;
-    std::vector<std::uint8_t> sources(volume3(n, n, n));
-    std::vector<std::uint8_t> distance[kFieldCount];
-    for (int f = 0; f < fields; ++f) {
-      gatherSources(haloLo, n, bitsHere[f], sources);
-      transform.run(sources, distance[f]);
-    }
+    std::vector<std::uint8_t>& bits = scratch.bits;
+    gatherBits(core - r, n, bits);
+    bool hasDistance[kFieldCount] = {false, false, false};
+    for (int f = 0; f < fields; ++f) hasDistance[f] = transform.run(bits, bitsHere[f], scratch.distance[f]);
     interior_.votes(core, glm::ivec3(c), votes);
 
-    std::vector<VoxelWord> words(volume3(c, c, c));
-    const std::uint8_t* block = nullptr;  // feature bits of the current chunk
+    std::vector<VoxelWord>& words = scratch.words;
+    words.resize(volume3(c, c, c));
+    // fields left out (no geometrical awareness) stay far; fields with no feature in reach read far distances
+    std::uint8_t keep[kFieldCount];
+    const std::uint8_t* distanceOf[kFieldCount];
+    std::array<std::uint8_t, kHyperEdgeVoxels> farRow;
+    farRow.fill(static_cast<std::uint8_t>(r + 1));
+    for (int f = 0; f < kFieldCount; ++f) keep[f] = f < fields ? 0xFF : 0;
     for (int z = 0; z < c; ++z) {
       for (int y = 0; y < c; ++y) {
-        for (int x = 0; x < c; ++x) {
-          const std::size_t i = at3(x, y, z, c, c);
-          const glm::ivec3 v = core + glm::ivec3(x, y, z);
-          if ((x & (kChunkEdgeVoxels - 1)) == 0) {
-            const auto* found = features_.find(v >> kChunkEdgeLog2);
-            block = found ? found->data() : nullptr;
-          }
-          const std::uint8_t bits = block ? block[voxelInChunk(v)] : 0;
-          const bool surface = bits & kSurfaceBit;
-          const bool inside = !surface && votes[i] >= 2;
-          if (!surface && votes[i] != 0 && votes[i] != 3) {
-            ++result.stats.voteDisagreements;
-            if (!result.stats.firstDisagreementLocal) result.stats.firstDisagreementLocal = grid_.voxelCentre(v);
-          }
-          std::uint8_t value[kFieldCount] = {kValueFar, kValueFar, kValueFar};
-          for (int f = 0; f < fields; ++f) {
-            if (bits & bitsHere[f]) {
-              value[f] = kValueFeature;
-            } else if (inside) {
-              value[f] = kValueInterior;
-            } else if (distance[f][i] <= r) {
-              value[f] = distanceValue(distance[f][i]);
+        const std::size_t i0 = at3(0, y, z, c, c);
+        for (int f = 0; f < kFieldCount; ++f) distanceOf[f] = hasDistance[f] ? &scratch.distance[f][i0] : farRow.data();
+        composeRow(&bits[at3(r, y + r, z + r, n, n)], &votes[i0], distanceOf, keep, &words[i0], result.stats);
+        if (result.stats.voteDisagreements > 0 && !result.stats.firstDisagreementLocal) {
+          for (int x = 0; x < c; ++x) {
+            const std::uint8_t v = votes[i0 + static_cast<std::size_t>(x)];
+            if (!(bits[at3(r + x, y + r, z + r, n, n)] & kSurfaceBit) && v != 0 && v != 3) {
+              result.stats.firstDisagreementLocal = grid_.voxelCentre(core + glm::ivec3(x, y, z));
+              break;
             }
-          }
-          words[i] = enc.pack(value[0], value[1], value[2]);
-          result.stats.edgeVoxels += (bits & kEdgeBit) ? 1 : 0;
-          result.stats.vertexVoxels += (bits & kVertexBit) ? 1 : 0;
-          if (bits & kSurfaceBit) {
-            result.stats.vertexPoints += (bits & kVertexBit) ? 1 : 0;
-            result.stats.edgePoints += (bits & kVertexBit) == 0 && (bits & kEdgeBit) ? 1 : 0;
-            result.stats.surfacePoints += (bits & (kVertexBit | kEdgeBit)) ? 0 : 1;
-          }
-          if (value[0] == kValueInterior) {
-            ++result.stats.interiorVoxels;
-          } else if (value[0] == kValueFeature) {
-            ++result.stats.surfaceVoxels;
-          } else if (value[0] != kValueFar) {
-            ++result.stats.distanceVoxels;
           }
         }
       }
@@ -216,9 +136,59 @@ public:
   }
 
 private:
-  /// Flags in `sources` (n³, from `lo`) the voxels whose feature byte has `bit`.
-  void gatherSources(const glm::ivec3& lo, int n, std::uint8_t bit, std::vector<std::uint8_t>& sources) const {
-    std::fill(sources.begin(), sources.end(), std::uint8_t{0});
+  /// The words of one row of 64 voxels from their feature bits, inside votes (0 … 3) and
+  /// capped distances per field; adds the row's voxels to `stats`. Written as one
+  /// branch-free pass so that the compiler vectorizes it.
+  void composeRow(const std::uint8_t* bits, const std::uint8_t* votes, const std::uint8_t* const* distance,
+                  const std::uint8_t* keep, VoxelWord* words, VoxelizeStats& stats) const {
+    const VoxelEncoding& enc = options_.encoding;
+    const int shift = enc.bitsPerField;
+    const auto range = static_cast<std::uint8_t>(enc.rangeVoxels);
+    std::uint32_t interior = 0, surface = 0, distant = 0, edges = 0, vertices = 0;
+    std::uint32_t vertexPoints = 0, edgePoints = 0, surfacePoints = 0, disagreements = 0;
+    for (int x = 0; x < kHyperEdgeVoxels; ++x) {
+      const std::uint8_t b = bits[x];
+      const std::uint8_t vote = votes[x];
+      const std::uint32_t isSurface = b & kSurfaceBit;
+      const std::uint32_t isEdge = (b >> 1) & 1u;
+      const std::uint32_t isVertex = (b >> 2) & 1u;
+      const bool inside = !isSurface && vote >= 2;
+      VoxelWord word = 0;
+      std::uint8_t first = 0;
+      for (int f = 0; f < kFieldCount; ++f) {
+        const std::uint8_t d = distance[f][x];
+        std::uint8_t value = d <= range ? static_cast<std::uint8_t>(kValueFeature + d) : kValueFar;
+        value = inside ? kValueInterior : value;
+        value = (b & (kSurfaceBit << f)) ? kValueFeature : value;
+        value = static_cast<std::uint8_t>(value & keep[f]);
+        first = f == 0 ? value : first;
+        word |= VoxelWord{value} << (f * shift);
+      }
+      words[x] = word;
+      interior += first == kValueInterior;
+      surface += first == kValueFeature;
+      distant += first > kValueFeature;
+      edges += isEdge;
+      vertices += isVertex;
+      vertexPoints += isSurface & isVertex;
+      edgePoints += isSurface & isEdge & (isVertex ^ 1u);
+      surfacePoints += isSurface & ((isEdge | isVertex) ^ 1u);
+      disagreements += !isSurface && vote != 0 && vote != 3;
+    }
+    stats.interiorVoxels += interior;
+    stats.surfaceVoxels += surface;
+    stats.distanceVoxels += distant;
+    stats.edgeVoxels += edges;
+    stats.vertexVoxels += vertices;
+    stats.vertexPoints += vertexPoints;
+    stats.edgePoints += edgePoints;
+    stats.surfacePoints += surfacePoints;
+    stats.voteDisagreements += disagreements;
+  }
+
+  /// Copies into `bits` (n³, x fastest) the feature bytes of the voxels [lo, lo + n).
+  void gatherBits(const glm::ivec3& lo, int n, std::vector<std::uint8_t>& bits) const {
+    bits.assign(volume3(n, n, n), 0);
     const glm::ivec3 chunkLo = lo >> kChunkEdgeLog2;
     const glm::ivec3 chunkHi = (lo + n - 1) >> kChunkEdgeLog2;
     for (int cz = chunkLo.z; cz <= chunkHi.z; ++cz) {
@@ -226,12 +196,15 @@ private:
         for (int cx = chunkLo.x; cx <= chunkHi.x; ++cx) {
           const auto* block = features_.find({cx, cy, cz});
           if (!block) continue;
+          // the part of the chunk inside the box, copied row by row
           const glm::ivec3 base = glm::ivec3(cx, cy, cz) * kChunkEdgeVoxels;
-          for (int i = 0; i < kVoxelsPerChunk; ++i) {
-            if (!((*block)[static_cast<std::size_t>(i)] & bit)) continue;
-            const glm::ivec3 v = base + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6) - lo;
-            if (v.x < 0 || v.y < 0 || v.z < 0 || v.x >= n || v.y >= n || v.z >= n) continue;
-            sources[at3(v.x, v.y, v.z, n, n)] = 1;
+          const glm::ivec3 from = glm::max(base, lo);
+          const glm::ivec3 to = glm::min(base + kChunkEdgeVoxels, lo + n);
+          for (int z = from.z; z < to.z; ++z) {
+            for (int y = from.y; y < to.y; ++y) {
+              const std::uint8_t* src = block->data() + voxelInChunk({from.x, y, z});
+              std::copy(src, src + (to.x - from.x), &bits[at3(from.x - lo.x, y - lo.y, z - lo.z, n, n)]);
+            }
           }
         }
       }
@@ -241,7 +214,9 @@ private:
   /// Splits the hyperchunk's words into chunks; uniform chunks become one word.
   void packChunks(const std::vector<VoxelWord>& words, HyperResult& result) const {
     const int c = kHyperEdgeVoxels;
+    const int e = kChunkEdgeVoxels;
     const std::size_t bytesPerWord = static_cast<std::size_t>(options_.encoding.bytesPerWord());
+    const std::size_t blockBytes = bytesPerWord * kVoxelsPerChunk;
     result.chunkEntries.assign(kChunksPerHyper, 0);
     result.uniform = true;
     result.uniformWord = words[0];
@@ -250,26 +225,34 @@ private:
     for (int cz = 0; cz < kHyperEdgeChunks; ++cz) {
       for (int cy = 0; cy < kHyperEdgeChunks; ++cy) {
         for (int cx = 0; cx < kHyperEdgeChunks; ++cx) {
-          bool chunkUniform = true;
-          bool bearing = false;
-          for (int i = 0; i < kVoxelsPerChunk; ++i) {
-            const glm::ivec3 v = glm::ivec3(cx, cy, cz) * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
-            chunkWords[i] = words[at3(v.x, v.y, v.z, c, c)];
-            chunkUniform = chunkUniform && chunkWords[i] == chunkWords[0];
-            bearing = bearing || (chunkWords[i] & surfaceMask) != 0;
+          for (int z = 0; z < e; ++z) {
+            for (int y = 0; y < e; ++y) {
+              const VoxelWord* row = &words[at3(cx * e, cy * e + y, cz * e + z, c, c)];
+              std::copy(row, row + e, &chunkWords[voxelInChunk({0, y, z})]);
+            }
+          }
+          VoxelWord differs = 0;
+          VoxelWord bearing = 0;
+          for (VoxelWord w : chunkWords) {
+            differs |= w ^ chunkWords[0];
+            bearing |= w & surfaceMask;
           }
           const std::uint32_t chunkIndex = chunkInHyper({cx, cy, cz});
           if (bearing) result.bearing[chunkIndex / 64] |= std::uint64_t{1} << (chunkIndex % 64);
           std::uint32_t& entry = result.chunkEntries[chunkIndex];
-          if (chunkUniform) {
+          if (!differs) {
             entry = Voxmap::kUniform | chunkWords[0];
             result.uniform = result.uniform && chunkWords[0] == result.uniformWord;
             continue;
           }
           result.uniform = false;
-          entry = static_cast<std::uint32_t>(result.blocks.size() / (bytesPerWord * kVoxelsPerChunk));
-          for (VoxelWord w : chunkWords) {
-            for (std::size_t b = 0; b < bytesPerWord; ++b) result.blocks.push_back(static_cast<std::uint8_t>(w >> (8 * b)));
+          entry = static_cast<std::uint32_t>(result.blocks.size() / blockBytes);
+          // the words' low bytes, as the voxmap reads them
+          static_assert(std::endian::native == std::endian::little);
+          const std::size_t at = result.blocks.size();
+          result.blocks.resize(at + blockBytes);
+          for (std::size_t i = 0; i < kVoxelsPerChunk; ++i) {
+            std::memcpy(&result.blocks[at + i * bytesPerWord], &chunkWords[i], bytesPerWord);
           }
         }
       }
@@ -407,10 +390,11 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
       hyperCount, options.threads,
       [&](std::size_t h) {
         thread_local std::unique_ptr<HyperchunkTransform> transform;
-        if (!transform || transform->haloSize() != kHyperEdgeVoxels + 2 * options.encoding.rangeVoxels) {
+        thread_local Voxelizer::Scratch scratch;
+        if (!transform || transform->range() != options.encoding.rangeVoxels) {
           transform = std::make_unique<HyperchunkTransform>(options.encoding.rangeVoxels);
         }
-        results[h] = voxelizer.build(hyperCoordinates(h, dims), *transform);
+        results[h] = voxelizer.build(hyperCoordinates(h, dims), *transform, scratch);
       },
       stage(0.5, 0.95));
 

@@ -155,7 +155,7 @@ TEST_F(VoxelCache, FlippedByteIsRebuiltWithAWarning) {
 }
 
 TEST_F(VoxelCache, TruncatedFileIsRebuiltWithAWarning) {
-  expectRebuiltAfter([](std::vector<char>& b) { b.resize(b.size() - 100); }, "truncated");
+  expectRebuiltAfter([](std::vector<char>& b) { b.erase(b.end() - 100, b.end()); }, "truncated");
   expectRebuiltAfter([](std::vector<char>& b) { b.resize(20); }, "truncated");
 }
 

@@ -160,11 +160,12 @@ TEST(Voxelizer, SmallHoleIsOutvotedAndReported) {
 
 TEST(Voxelizer, RefusesBadVoxelSizesBeforeAllocating) {
   const TriangleMesh cube = offsetCube();
-  EXPECT_THROW(voxelizeOne(cube, 0.0), Error);
-  EXPECT_THROW(voxelizeOne(cube, -1.0), Error);
-  EXPECT_THROW(voxelizeOne(cube, std::nan("")), Error);
   const TriangleMesh* meshes[] = {&cube};
   VoxelizeOptions options;
+  for (double bad : {0.0, -1.0, std::nan("")}) {
+    options.voxelSizeM = bad;
+    EXPECT_THROW(voxelize(meshes, {}, options), Error) << bad;
+  }
   options.voxelSizeM = 1e-7;
   options.memoryBudgetBytes = std::uint64_t{1} << 30;
   try {
