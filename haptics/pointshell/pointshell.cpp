@@ -30,21 +30,16 @@ public:
       : grid_(grid) {
     for (std::size_t part = 0; part < features.size(); ++part) {
       for (const glm::vec3& v : features[part].featureVertices) {
-        if (const auto n = normals.vertexNormal(part, v)) add(vertices_, grid.voxelOf(glm::dvec3(v)), *n);
+        if (const auto n = normals.vertexNormal(part, v)) add(vertices_, glm::dvec3(v), *n);
       }
       for (const auto& [a, b] : features[part].featureEdges) {
         const auto n = normals.edgeNormal(part, a, b);
         if (!n) continue;
         const glm::dvec3 from(a);
         const glm::dvec3 along = glm::dvec3(b) - from;
+        // samples a quarter voxel apart: each voxel's sum weighs its edges by length inside
         const int steps = 1 + static_cast<int>(std::ceil(4.0 * glm::length(along) / grid.voxelSizeM));
-        std::uint64_t last = ~std::uint64_t{0};
-        for (int k = 0; k <= steps; ++k) {
-          const glm::ivec3 v = grid.voxelOf(from + along * (static_cast<double>(k) / steps));
-          if (!grid.containsVoxel(v) || key(v) == last) continue;
-          last = key(v);
-          add(edges_, v, *n);
-        }
+        for (int k = 0; k <= steps; ++k) add(edges_, from + along * (static_cast<double>(k) / steps), *n);
       }
     }
   }
@@ -64,8 +59,19 @@ private:
     return (static_cast<std::uint64_t>(v.x) << 42) | (static_cast<std::uint64_t>(v.y) << 21) |
            static_cast<std::uint64_t>(v.z);
   }
-  void add(Map& map, const glm::ivec3& v, const glm::dvec3& n) {
-    if (grid_.containsVoxel(v)) map[key(v)] += n;
+  /// Adds `n` to every voxel whose closed box holds `pointLocal`: a feature on a voxel
+  /// boundary belongs to the voxels on both sides, as the rasterizer marks both.
+  void add(Map& map, const glm::dvec3& pointLocal, const glm::dvec3& n) {
+    const double eps = 1e-6 * grid_.voxelSizeM;
+    const glm::ivec3 lo = grid_.voxelOf(pointLocal - eps);
+    const glm::ivec3 hi = grid_.voxelOf(pointLocal + eps);
+    for (int z = lo.z; z <= hi.z; ++z) {
+      for (int y = lo.y; y <= hi.y; ++y) {
+        for (int x = lo.x; x <= hi.x; ++x) {
+          if (grid_.containsVoxel({x, y, z})) map[key({x, y, z})] += n;
+        }
+      }
+    }
   }
   const VoxelGrid& grid_;
   Map vertices_;
