@@ -175,6 +175,35 @@ TEST(Simulation, PegSlidesIntoItsHoleWithoutJamming) {
   EXPECT_LT(std::hypot(at.x, at.y), 0.0002);
 }
 
+TEST(Simulation, TwoMovingBoxesCollideWithEqualAndOppositeForces) {
+  Scene scene;
+  for (int i = 0; i < 2; ++i) {
+    scene.objects.push_back(test::meshObject(i == 0 ? "left" : "right", ObjectRole::Dynamic, [&](TriangleMesh& m) {
+      const double x = i == 0 ? -0.0062 : 0.0061;
+      appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(x, 0.0003 * i, 0.0)), glm::dvec3(0.005, 0.004, 0.003 + 0.001 * i));
+    }));
+  }
+  const SimModel model = test::freeModel(scene, {"left", "right"}, kVoxel, glm::dvec3(0.0));
+  ASSERT_EQ(model.pairs.size(), 1u);
+  SimState state = makeSimState(model);
+  state.bodies[0].linearVelocityWorld = glm::dvec3(0.05, 0.0, 0.0);
+  auto momentum = [&] {
+    return model.objects[0].body.massKg * state.bodies[0].linearVelocityWorld +
+           model.objects[1].body.massKg * state.bodies[1].linearVelocityWorld;
+  };
+  const glm::dvec3 before = momentum();
+  std::uint32_t contacts = 0;
+  runFree(model, state, 200, [&](const SimState& s) {
+    contacts = std::max(contacts, s.last[0].contacts);
+    EXPECT_LT(glm::length(s.last[0].contactForceWorld + s.last[1].contactForceWorld), 1e-12);
+  });
+  EXPECT_GT(contacts, 0u);
+  EXPECT_LT(glm::length(momentum() - before), 1e-9 * glm::length(before));
+  // the right box was pushed away, the left one slowed down
+  EXPECT_GT(state.bodies[1].linearVelocityWorld.x, 0.01);
+  EXPECT_LT(state.bodies[0].linearVelocityWorld.x, 0.04);
+}
+
 TEST(Simulation, PairsOutOfRangeCostNoPointTests) {
   const Scene scene = sphereOverPlate(0.01, 0.05);
   const SimModel model = test::freeModel(scene, {"ball"}, kVoxel, glm::dvec3(0.0));
