@@ -52,7 +52,17 @@ SimState makeSimState(const SimModel& model) {
   }
   state.last.resize(model.objects.size());
   state.scratch.resize(largest);
+  if (!model.pairs.empty()) state.forceLayer = model.pairs.front().params.forceLayer;
   return state;
+}
+
+bool setForceLayer(const SimModel& model, SimState& state, std::uint8_t value) noexcept {
+  if (value < 1) return false;
+  for (const PairModel& pair : model.pairs) {
+    if (value > model.voxmapOf(pair).encoding().maxValue()) return false;
+  }
+  state.forceLayer = value;
+  return true;
 }
 
 void stepWithDevices(const SimModel& model, SimState& state, std::span<HapticDevice* const> devices,
@@ -85,12 +95,14 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
       ++state.pairsSkipped;
       continue;
     }
+    ContactParams params = pair.params;
+    params.forceLayer = state.forceLayer;
     const VoxelTransform transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
-    const auto shifts = fieldShiftsByFeature(pair.params.geometricalAwareness, voxmap.encoding());
+    const auto shifts = fieldShiftsByFeature(params.geometricalAwareness, voxmap.encoding());
     const auto points = static_cast<std::uint32_t>(shellObject.shell.size());
-    const std::uint32_t found = samplePoints(shellObject.shell, voxmap, transform, shifts, pair.params.forceLayer, 0,
+    const std::uint32_t found = samplePoints(shellObject.shell, voxmap, transform, shifts, params.forceLayer, 0,
                                              points, state.scratch.data());
-    const PairWrench w = tangentPlaneWrench(shellObject.shell, voxmap, pair.params, shellMotion, voxmapMotion,
+    const PairWrench w = tangentPlaneWrench(shellObject.shell, voxmap, params, shellMotion, voxmapMotion,
                                             std::span(state.scratch.data(), found));
     ObjectFrame& s = state.last[static_cast<std::size_t>(pair.shellObject)];
     s.contactForceWorld += w.forceOnShellWorld;

@@ -47,7 +47,15 @@ struct SimState {
   std::uint64_t pairsSkipped = 0;      ///< pair-frames out of range, in all
   std::uint64_t travelLimitedFrames = 0;  ///< object-frames that MaxTravel held back
   std::vector<PointContact> scratch;   ///< room for the largest pointshell's contacts
+  /// The force layer in use (collision offsetting, paper §3.2), adjustable between frames
+  /// with setForceLayer; starts at the model's.
+  std::uint8_t forceLayer = kDefaultForceLayer;
 };
+
+/// Moves the force layer of every pair to `value` (1 … the voxmaps' largest value) from
+/// the next frame on: a larger value keeps the objects further apart. Returns false and
+/// changes nothing when the value is out of range.
+bool setForceLayer(const SimModel& model, SimState& state, std::uint8_t value) noexcept;
 
 /// A state with every object at rest where the scene file puts it.
 SimState makeSimState(const SimModel& model);

@@ -63,6 +63,23 @@ TEST(Simulation, SphereDroppedOnAPlateRestsWithAnExactGapAndNeverPenetrates) {
   EXPECT_GT(state.last[0].contacts, 0u);
 }
 
+TEST(Simulation, RaisingTheForceLayerLiftsTheSphereByAVoxelPerLayer) {
+  const Scene scene = sphereOverPlate(0.01, 0.001);
+  const SimModel model = test::freeModel(scene, {"ball"}, kVoxel, kGravity);
+  double gap[2];
+  for (int k = 0; k < 2; ++k) {
+    SimState state = makeSimState(model);
+    ASSERT_TRUE(setForceLayer(model, state, static_cast<std::uint8_t>(kDefaultForceLayer + 2 * k)));
+    runFree(model, state, 1500, [](const SimState&) {});
+    gap[k] = test::lowestZ(scene.objects[1], objectPose(model, state, 0));
+  }
+  EXPECT_NEAR(gap[1] - gap[0], 2.0 * kVoxel, 0.5 * kVoxel);
+  SimState state = makeSimState(model);
+  EXPECT_FALSE(setForceLayer(model, state, 0));
+  EXPECT_FALSE(setForceLayer(model, state, 11));
+  EXPECT_EQ(state.forceLayer, kDefaultForceLayer);
+}
+
 TEST(Simulation, BoxRestsFlatOnAPlateWithNegligibleTorque) {
   const Scene scene = boxOverPlate(0.0008);
   const SimModel model = test::freeModel(scene, {"box"}, kVoxel, kGravity);
