@@ -93,13 +93,16 @@ public:
     return value;
   }
   /// Reads an array written by putArray; its size is checked against what is left of
-  /// the payload before anything is allocated.
+  /// the payload before anything is allocated. The vector gets room for `spare` more
+  /// elements, for a caller that will append them.
   template <typename T>
-  std::vector<T> getArray() {
+  std::vector<T> getArray(std::size_t spare = 0) {
     static_assert(std::is_trivially_copyable_v<T>);
     const auto count = get<std::uint64_t>();
     if (count > remaining_ / sizeof(T)) throw CacheFileError("is corrupt (an array runs past the end)");
-    std::vector<T> values(static_cast<std::size_t>(count));
+    std::vector<T> values;
+    values.reserve(static_cast<std::size_t>(count) + spare);
+    values.resize(static_cast<std::size_t>(count));
     read(values.data(), values.size() * sizeof(T));
     return values;
   }

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <vector>
 
+#include "haptics/core/parallel.h"
+
 namespace voxhap {
 namespace {
 
@@ -49,7 +51,7 @@ void transformLine(int m, const std::uint8_t* in, std::uint8_t* out, std::ptrdif
 
 }  // namespace
 
-void chessboardChunkTransform(std::span<std::uint8_t> field, const glm::ivec3& dims) {
+void chessboardChunkTransform(std::span<std::uint8_t> field, const glm::ivec3& dims, int threads) {
   const auto nx = static_cast<std::size_t>(dims.x);
   const auto ny = static_cast<std::size_t>(dims.y);
   const auto nz = static_cast<std::size_t>(dims.z);
@@ -57,39 +59,57 @@ void chessboardChunkTransform(std::span<std::uint8_t> field, const glm::ivec3& d
   if (field.empty()) return;
   for (std::uint8_t& v : field) v = v == 0 ? 0 : kChunkDistanceCap;
 
-  const int longest = std::max({dims.x, dims.y, dims.z});
-  std::vector<int> s(static_cast<std::size_t>(longest));
-  std::vector<int> t(static_cast<std::size_t>(longest));
-  // x: lines are contiguous
-  std::vector<std::uint8_t> in(nx);
-  for (std::size_t row = 0; row < ny * nz; ++row) {
-    std::copy_n(&field[row * nx], nx, in.data());
-    transformLine(dims.x, in.data(), &field[row * nx], 1, s.data(), t.data());
-  }
-
-  // y and z: gather kBatch adjacent lines into scratch[position][line], transform, scatter
-  std::vector<std::uint8_t> scratch(static_cast<std::size_t>(longest) * kBatch);
-  std::vector<std::uint8_t> result(scratch.size());
-  auto pass = [&](std::size_t lines, std::size_t length, std::size_t lineStride, std::size_t outerCount,
-                  std::size_t outerStride) {
-    for (std::size_t outer = 0; outer < outerCount; ++outer) {
-      for (std::size_t x0 = 0; x0 < lines; x0 += kBatch) {
-        const std::size_t batch = std::min<std::size_t>(kBatch, lines - x0);
-        std::uint8_t* base = &field[outer * outerStride + x0];
-        for (std::size_t k = 0; k < length; ++k) {
-          std::copy_n(base + k * lineStride, batch, &scratch[k * kBatch]);
-        }
-        for (std::size_t b = 0; b < batch; ++b) {
-          transformLine(static_cast<int>(length), &scratch[b], &result[b], kBatch, s.data(), t.data());
-        }
-        for (std::size_t k = 0; k < length; ++k) {
-          std::copy_n(&result[k * kBatch], batch, base + k * lineStride);
-        }
-      }
-    }
+  // per task: Meijster's stacks, and kBatch lines gathered as scratch[position][line]
+  struct Scratch {
+    std::vector<int> s, t;
+    std::vector<std::uint8_t> in, out;
+    explicit Scratch(int length)
+        : s(static_cast<std::size_t>(length)), t(static_cast<std::size_t>(length)),
+          in(static_cast<std::size_t>(length) * kBatch), out(static_cast<std::size_t>(length) * kBatch) {}
   };
-  pass(nx, ny, nx, nz, nx * ny);  // along y, one z layer at a time
-  pass(nx * ny, nz, nx * ny, 1, 0);  // along z, the whole x–y plane as lines
+
+  // x: lines are contiguous; one z layer per task
+  parallelFor(nz, threads, [&](std::size_t z) {
+    Scratch scratch(dims.x);
+    for (std::size_t row = z * ny; row < (z + 1) * ny; ++row) {
+      std::uint8_t* line = &field[row * nx];
+      if (std::find(line, line + nx, 0) == line + nx) continue;  // no source: stays capped
+      std::copy_n(line, nx, scratch.in.data());
+      transformLine(dims.x, scratch.in.data(), line, 1, scratch.s.data(), scratch.t.data());
+    }
+  });
+
+  // y and z: kBatch adjacent lines gathered, transformed and scattered back; lines that
+  // hold nothing below the cap are left as they are
+  auto batch = [&](std::uint8_t* base, std::size_t lines, std::size_t length, std::size_t lineStride,
+                   Scratch& scratch) {
+    bool near = false;
+    for (std::size_t k = 0; k < length; ++k) {
+      const std::uint8_t* from = base + k * lineStride;
+      std::copy_n(from, lines, &scratch.in[k * kBatch]);
+      near = near || std::any_of(from, from + lines, [](std::uint8_t v) { return v != kChunkDistanceCap; });
+    }
+    if (!near) return;
+    for (std::size_t b = 0; b < lines; ++b) {
+      transformLine(static_cast<int>(length), &scratch.in[b], &scratch.out[b], kBatch, scratch.s.data(),
+                    scratch.t.data());
+    }
+    for (std::size_t k = 0; k < length; ++k) std::copy_n(&scratch.out[k * kBatch], lines, base + k * lineStride);
+  };
+  // along y: one z layer per task
+  parallelFor(nz, threads, [&](std::size_t z) {
+    Scratch scratch(dims.y);
+    for (std::size_t x0 = 0; x0 < nx; x0 += kBatch) {
+      batch(&field[z * nx * ny + x0], std::min<std::size_t>(kBatch, nx - x0), ny, nx, scratch);
+    }
+  });
+  // along z: the x–y plane as lines, kBatch of them per task
+  const std::size_t planeLines = nx * ny;
+  parallelFor((planeLines + kBatch - 1) / kBatch, threads, [&](std::size_t task) {
+    Scratch scratch(dims.z);
+    const std::size_t first = task * kBatch;
+    batch(&field[first], std::min<std::size_t>(kBatch, planeLines - first), nz, planeLines, scratch);
+  });
 }
 
 }  // namespace voxhap

@@ -8,7 +8,8 @@
 /// d'(u) = min_i max(|u − i|, d(i)) along x, then y, then z give it exactly. Each pass
 /// is the linear-time lower-envelope scan of Meijster, Roerdink and Hesselink (2000)
 /// with its L∞ separator. Capping every intermediate value commutes with the passes,
-/// so one byte per chunk is enough throughout. Single-threaded and deterministic.
+/// so one byte per chunk is enough throughout. Lines are independent within a pass, so
+/// they run in parallel; deterministic.
 
 #include <cstdint>
 #include <span>
@@ -23,6 +24,7 @@ inline constexpr std::uint8_t kChunkDistanceCap = 255;
 /// Replaces `field` (dims.x × dims.y × dims.z bytes, x fastest; 0 for a source chunk,
 /// anything else for a non-source) with each chunk's chessboard distance, in chunks,
 /// to the nearest source, capped at kChunkDistanceCap (also when there is no source).
-void chessboardChunkTransform(std::span<std::uint8_t> field, const glm::ivec3& dims);
+/// Uses `threads` threads (0: all cores); the result does not depend on it.
+void chessboardChunkTransform(std::span<std::uint8_t> field, const glm::ivec3& dims, int threads = 0);
 
 }  // namespace voxhap

@@ -62,7 +62,8 @@ void loadOrBuild(Result& result, const CacheOptions& cache, const std::string& f
                  const Digest128& key, const std::function<void(CacheFileReader&)>& load,
                  const std::function<void()>& build, const std::function<void(CacheFileWriter&)>& save) {
   const fs::path file = cache.directory / fileName;
-  if (cache.enabled) {
+  const bool enabled = cache.enabled && !cache.directory.empty();
+  if (enabled) {
     result.cacheFile = file;
     std::error_code ec;
     if (fs::exists(file, ec)) {
@@ -83,7 +84,7 @@ void loadOrBuild(Result& result, const CacheOptions& cache, const std::string& f
     }
   }
   build();
-  if (!cache.enabled) return;
+  if (!enabled) return;
   const auto start = std::chrono::steady_clock::now();
   try {
     std::error_code ec;
@@ -146,7 +147,7 @@ VoxelizedObject loadVoxelized(CacheFileReader& r, const VoxelizeOptions& options
   if (hasDisagreement) v.stats.firstDisagreementLocal = disagreement;
   auto hyper = r.getArray<std::uint32_t>();
   auto chunks = r.getArray<std::uint32_t>();
-  auto voxelBytes = r.getArray<std::uint8_t>();
+  auto voxelBytes = r.getArray<std::uint8_t>(Voxmap::kPadBytes);
   auto chunkDistances = r.getArray<std::uint8_t>();
   const std::string problem =
       Voxmap::validate(grid, encoding, hyper, chunks, voxelBytes.size(), chunkDistances.size());

@@ -26,14 +26,14 @@ namespace voxhap {
 
 /// Where the cache lives and whether to use it.
 struct CacheOptions {
-  std::filesystem::path directory;  ///< created when first written to
+  std::filesystem::path directory;  ///< created when first written to; empty: no cache
   bool enabled = true;              ///< false: always build, never read or write files
 };
 
 /// A voxelization and how it was obtained.
 struct CachedVoxelization {
-  VoxelizedObject voxelized;
-  bool cacheHit = false;
+  VoxelizedObject voxelized;  ///< the voxmap (object-local frame) and its counts
+  bool cacheHit = false;      ///< read from the cache rather than built
   double voxelizeS = 0.0;  ///< seconds spent building (features + voxelize); 0 on a hit
   double loadS = 0.0;      ///< seconds spent reading the cache file; 0 on a miss
   double saveS = 0.0;      ///< seconds spent writing the cache file; 0 on a hit or when disabled
@@ -43,13 +43,13 @@ struct CachedVoxelization {
 
 /// A pointshell and how it was obtained.
 struct CachedPointshell {
-  Pointshell pointshell;
-  bool cacheHit = false;
+  Pointshell pointshell;  ///< object-local frame
+  bool cacheHit = false;  ///< read from the cache rather than built
   double buildS = 0.0;  ///< seconds spent building (features + pointshell); 0 on a hit
   double loadS = 0.0;   ///< seconds spent reading the cache file; 0 on a miss
   double saveS = 0.0;   ///< seconds spent writing the cache file; 0 on a hit or when disabled
-  std::filesystem::path cacheFile;
-  std::vector<std::string> warnings;
+  std::filesystem::path cacheFile;  ///< the file read or written; empty when the cache is disabled
+  std::vector<std::string> warnings;  ///< one line each, e.g. a corrupt cache file that was rebuilt
 };
 
 /// Voxelizes the parts of `objects` (object-local frame = the scene's world frame) as one

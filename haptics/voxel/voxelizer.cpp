@@ -138,48 +138,53 @@ public:
 private:
   /// The words of one row of 64 voxels from their feature bits, inside votes (0 … 3) and
   /// capped distances per field; adds the row's voxels to `stats`. Written as one
-  /// branch-free pass so that the compiler vectorizes it.
-  void composeRow(const std::uint8_t* bits, const std::uint8_t* votes, const std::uint8_t* const* distance,
+  /// branch-free pass so that the compiler vectorizes it (out of line: inlined, it does not).
+  [[gnu::noinline]] void composeRow(const std::uint8_t* bits, const std::uint8_t* votes, const std::uint8_t* const* distance,
                   const std::uint8_t* keep, VoxelWord* words, VoxelizeStats& stats) const {
     const VoxelEncoding& enc = options_.encoding;
     const int shift = enc.bitsPerField;
     const auto range = static_cast<std::uint8_t>(enc.rangeVoxels);
+    const std::uint8_t* d0 = distance[0];
+    const std::uint8_t* d1 = distance[1];
+    const std::uint8_t* d2 = distance[2];
+    const std::uint8_t keep0 = keep[0], keep1 = keep[1], keep2 = keep[2];
+    // one field's value: feature voxel, else interior, else free space within range, else far
+    auto value = [range](std::uint8_t isFeature, std::uint8_t inside, std::uint8_t d, std::uint8_t kept) {
+      std::uint8_t v = d <= range ? static_cast<std::uint8_t>(kValueFeature + d) : kValueFar;
+      v = inside ? kValueInterior : v;
+      v = isFeature ? kValueFeature : v;
+      return static_cast<std::uint8_t>(v & kept);
+    };
     std::uint32_t interior = 0, surface = 0, distant = 0, edges = 0, vertices = 0;
     std::uint32_t vertexPoints = 0, edgePoints = 0, surfacePoints = 0, disagreements = 0;
+    // byte arithmetic only, no shifts of bytes and no short-circuits, so that it vectorizes
     for (int x = 0; x < kHyperEdgeVoxels; ++x) {
       const std::uint8_t b = bits[x];
       const std::uint8_t vote = votes[x];
-      const std::uint32_t isSurface = b & kSurfaceBit;
-      const std::uint32_t isEdge = (b >> 1) & 1u;
-      const std::uint32_t isVertex = (b >> 2) & 1u;
-      const bool inside = !isSurface && vote >= 2;
-      VoxelWord word = 0;
-      std::uint8_t first = 0;
-      for (int f = 0; f < kFieldCount; ++f) {
-        const std::uint8_t d = distance[f][x];
-        std::uint8_t value = d <= range ? static_cast<std::uint8_t>(kValueFeature + d) : kValueFar;
-        value = inside ? kValueInterior : value;
-        value = (b & (kSurfaceBit << f)) ? kValueFeature : value;
-        value = static_cast<std::uint8_t>(value & keep[f]);
-        first = f == 0 ? value : first;
-        word |= VoxelWord{value} << (f * shift);
-      }
-      words[x] = word;
-      interior += first == kValueInterior;
-      surface += first == kValueFeature;
-      distant += first > kValueFeature;
+      const auto isSurface = static_cast<std::uint8_t>(b & kSurfaceBit);
+      const auto isEdge = static_cast<std::uint8_t>(b & kEdgeBit);
+      const auto isVertex = static_cast<std::uint8_t>(b & kVertexBit);
+      const auto notSurface = static_cast<std::uint8_t>(isSurface - 1);  // 0xFF or 0
+      const auto inside = static_cast<std::uint8_t>(vote & 2 & notSurface);  // two votes or three
+      const std::uint8_t v0 = value(isSurface, inside, d0[x], keep0);
+      const std::uint8_t v1 = value(isEdge, inside, d1[x], keep1);
+      const std::uint8_t v2 = value(isVertex, inside, d2[x], keep2);
+      words[x] = VoxelWord{v0} | (VoxelWord{v1} << shift) | (VoxelWord{v2} << (2 * shift));
+      interior += v0 == kValueInterior;
+      surface += v0 == kValueFeature;
+      distant += v0 > kValueFeature;
       edges += isEdge;
       vertices += isVertex;
-      vertexPoints += isSurface & isVertex;
-      edgePoints += isSurface & isEdge & (isVertex ^ 1u);
-      surfacePoints += isSurface & ((isEdge | isVertex) ^ 1u);
-      disagreements += !isSurface && vote != 0 && vote != 3;
+      vertexPoints += (b & (kSurfaceBit | kVertexBit)) == (kSurfaceBit | kVertexBit);
+      edgePoints += (b & (kSurfaceBit | kEdgeBit | kVertexBit)) == (kSurfaceBit | kEdgeBit);
+      surfacePoints += (b & (kSurfaceBit | kEdgeBit | kVertexBit)) == kSurfaceBit;
+      disagreements += static_cast<std::uint8_t>((vote == 1 || vote == 2) ? notSurface & 1 : 0);
     }
     stats.interiorVoxels += interior;
     stats.surfaceVoxels += surface;
     stats.distanceVoxels += distant;
-    stats.edgeVoxels += edges;
-    stats.vertexVoxels += vertices;
+    stats.edgeVoxels += edges / kEdgeBit;
+    stats.vertexVoxels += vertices / kVertexBit;
     stats.vertexPoints += vertexPoints;
     stats.edgePoints += edgePoints;
     stats.surfacePoints += surfacePoints;
@@ -410,6 +415,15 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
   std::vector<std::uint32_t> hyper(hyperCount);
   std::vector<std::uint32_t> chunks;
   std::vector<std::uint8_t> voxelBytes;
+  // sized once (with the voxmap's read padding), so that nothing is copied twice
+  std::size_t chunkEntryCount = 0;
+  std::size_t voxelByteCount = 0;
+  for (const HyperResult& r : results) {
+    chunkEntryCount += r.chunkEntries.size();
+    voxelByteCount += r.blocks.size();
+  }
+  chunks.reserve(chunkEntryCount);
+  voxelBytes.reserve(voxelByteCount + Voxmap::kPadBytes);
   const std::size_t blockBytes = static_cast<std::size_t>(options.encoding.bytesPerWord()) * kVoxelsPerChunk;
   for (std::size_t h = 0; h < hyperCount; ++h) {
     HyperResult& r = results[h];
@@ -434,7 +448,7 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
     voxelBytes.insert(voxelBytes.end(), r.blocks.begin(), r.blocks.end());
     r = HyperResult{};
   }
-  chessboardChunkTransform(chunkDistances, dimsChunks);
+  chessboardChunkTransform(chunkDistances, dimsChunks, options.threads);
   stats.triangles = triangles;
   for (const MeshFeatures& f : features) stats.polygonsAfterMerge += f.polygonCount;
   if (progress) progress(1.0);

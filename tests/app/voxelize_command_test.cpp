@@ -1,8 +1,12 @@
 // `voxhap voxelize`, run as the real executable: exit codes, the JSON figures, the
 // cache across runs and the slice picture.
 
+#include <png.h>
+
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -30,6 +34,30 @@ protected:
     return nlohmann::json::parse(r.out);  // throws unless stdout is exactly one document
   }
 };
+
+/// A PNG decoded to 8-bit RGB, or width 0 when libpng cannot read it.
+struct Decoded {
+  png_uint_32 width = 0;
+  png_uint_32 height = 0;
+  std::vector<png_byte> rgb;
+  std::array<int, 3> at(png_uint_32 x, png_uint_32 y) const {
+    const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+
+Decoded decodePng(const fs::path& file) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  Decoded out;
+  if (!png_image_begin_read_from_file(&image, file.c_str())) return out;
+  image.format = PNG_FORMAT_RGB;
+  out.rgb.resize(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr)) return out;
+  out.width = image.width;
+  out.height = image.height;
+  return out;
+}
 
 std::uint32_t bigEndian32(const std::string& bytes, std::size_t at) {
   std::uint32_t v = 0;
@@ -161,6 +189,30 @@ TEST_F(VoxelizeCommand, SliceIsAPngOfThreePanelsOfTheGridsLayer) {
   const double lowestM = info["objects"][0]["bounds_m"]["min"][2].get<double>();
   const int gridStart = static_cast<int>(std::floor(lowestM / kVoxelM)) - 9;
   EXPECT_EQ(j["slice"]["layer"], 34 - gridStart);
+
+  // decoded: far in the corner, interior at the ball's axis in both the surface and the
+  // edge panel, a white surface voxel where the sphere (21.93 mm across at z = 12 mm)
+  // cuts the x axis, in voxel floor(21.93 / 0.35) = 62
+  const Decoded image = decodePng(dir_ / "ball.png");
+  ASSERT_EQ(image.width, width);
+  ASSERT_EQ(image.height, height);
+  const auto pixelX = [&](int voxel, int panel) {
+    return static_cast<png_uint_32>((voxel - gridStart) * 3 + 1 + panel * (576 + 8));
+  };
+  const auto pixelY = static_cast<png_uint_32>((191 - (0 - gridStart)) * 3 + 1);  // y = 0, up is up
+  EXPECT_EQ(image.at(0, 0), (std::array<int, 3>{28, 28, 32}));
+  EXPECT_EQ(image.at(pixelX(0, 0), pixelY), (std::array<int, 3>{45, 80, 170}));
+  EXPECT_EQ(image.at(pixelX(0, 1), pixelY), (std::array<int, 3>{45, 80, 170}));
+  EXPECT_EQ(image.at(pixelX(62, 0), pixelY), (std::array<int, 3>{255, 255, 255}));
+}
+
+TEST_F(VoxelizeCommand, UnwritablePngExitsOneNamingTheFile) {
+  const CliRun r = voxhap({"voxelize", asset("ball-and-socket.glb"), "--object", "ball", "--voxel-size", "1mm",
+                           "--slice", "z=0", "--png", "no-such-folder/ball.png"});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("no-such-folder/ball.png"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "no-such-folder"));
 }
 
 TEST_F(VoxelizeCommand, SliceMistakesExitTwo) {

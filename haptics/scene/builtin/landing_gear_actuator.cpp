@@ -87,7 +87,10 @@ void appendClevis(GearBuilder& gear, double eyeXLocal, double baseFromXWorld, do
   appendBlockWithHole(plates, translation(eye - glm::dvec3(0.0, 0.0, innerFace + kClevisPlateThicknessM)),
                       plate, 64);
   const double outerFace = innerFace + kClevisPlateThicknessM;
-  appendBox(plates, translation({0.5 * (baseFromXWorld + baseToXWorld), 0.0, eye.z}),
+  // the base runs through both plates: a part of its own, so that each part's surface
+  // bounds one solid and ray parity inside each part stays right
+  TriangleMesh& bases = gear.part("brackets", "actuator-clevis-bases", kBracketGreen);
+  appendBox(bases, translation({0.5 * (baseFromXWorld + baseToXWorld), 0.0, eye.z}),
             {0.5 * (baseToXWorld - baseFromXWorld), kClevisPlateHalfWidthM, outerFace});
 }
 

@@ -56,6 +56,20 @@ TEST(ChunkDistance, MatchesTheBruteForceChessboardDistanceOnRandomSources) {
   }
 }
 
+TEST(ChunkDistance, SameWhateverTheThreadCount) {
+  // larger than a batch of lines in every direction, sources sparse enough for long distances
+  const glm::ivec3 dims(150, 97, 70);
+  std::mt19937 random(7);
+  std::bernoulli_distribution isSource(0.0003);
+  std::vector<std::uint8_t> one(static_cast<std::size_t>(dims.x * dims.y * dims.z));
+  for (std::uint8_t& v : one) v = isSource(random) ? 0 : 1;
+  std::vector<std::uint8_t> two = one;
+  chessboardChunkTransform(one, dims, 1);
+  chessboardChunkTransform(two, dims, 2);
+  EXPECT_EQ(one, two);
+  EXPECT_GT(*std::max_element(one.begin(), one.end()), 20);
+}
+
 TEST(ChunkDistance, LongRowsAreCappedAt255) {
   const glm::ivec3 dims(600, 2, 1);
   std::vector<std::uint8_t> field(static_cast<std::size_t>(dims.x * dims.y * dims.z), 1);

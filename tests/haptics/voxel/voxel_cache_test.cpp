@@ -227,6 +227,16 @@ TEST_F(VoxelCache, PointshellMissThenHitIsTheSame) {
   EXPECT_NE(moved.cacheFile, miss.cacheFile);
 }
 
+TEST_F(VoxelCache, PointCountsOfTheVoxmapAreThePointshellsAtThatSpacing) {
+  // the same lattice: one point per surface voxel, labelled by the same feature priority
+  const CachedVoxelization v = voxelizeCached(objects_.both, voxelOptions(), {{}, false});
+  const CachedPointshell p = pointshellCached(objects_.both, shellOptions(), {{}, false});
+  EXPECT_EQ(v.voxelized.stats.surfaceVoxels, p.pointshell.size());
+  EXPECT_EQ(v.voxelized.stats.vertexPoints, p.pointshell.count(PointFeature::Vertex));
+  EXPECT_EQ(v.voxelized.stats.edgePoints, p.pointshell.count(PointFeature::Edge));
+  EXPECT_EQ(v.voxelized.stats.surfacePoints, p.pointshell.count(PointFeature::Surface));
+}
+
 TEST_F(VoxelCache, CorruptPointshellFileIsRebuilt) {
   const SceneObject* ball[] = {&objects_.ball};
   const CachedPointshell first = pointshellCached(ball, shellOptions(), cache());

@@ -1,5 +1,6 @@
 #include "haptics/voxel/voxelizer.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -133,6 +134,7 @@ TEST(Voxelizer, SameVoxmapWhateverTheThreadCount) {
       for (int x = 0; x < d.x; ++x) ASSERT_EQ(one.voxmap.word({x, y, z}), two.voxmap.word({x, y, z}));
     }
   }
+  EXPECT_TRUE(std::ranges::equal(one.voxmap.chunkDistances(), two.voxmap.chunkDistances()));
 }
 
 TEST(Voxelizer, EveryBitWidthGivesTheSameSurfaceAndInterior) {
