@@ -13,8 +13,10 @@ inline constexpr std::uint8_t kDefaultForceLayer = distanceValue(2);
 
 /// Above this many points pushing, the per-point stiffness and damping are scaled down
 /// so that the total stays at kStiffContacts · per-point stiffness (the original VPS caps
-/// at ~10). Points count by their depth, up to one voxel each, so that a point entering
-/// the force layer does not make the others' forces jump. Four: a box on a plate under
+/// at ~10). Every pushing point counts in full, however shallow: the cap bounds the
+/// stiffness, the sum of k over pushing points, not the force (counting points by depth
+/// let 1,500 shallow contacts of the actuator add up to 375 times the bound, and it shook
+/// at the frame rate). Four: a box on a plate under
 /// geometrical awareness stands on its four corner points with the pair's whole stiffness.
 inline constexpr int kStiffContacts = 4;
 

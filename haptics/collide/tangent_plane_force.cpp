@@ -25,13 +25,15 @@ glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8
   return length > 0.0 ? g / length : g;
 }
 
-/// The contact normal (toward the voxmap object) by the feature of the point: a surface
-/// point's own normal `n` (under geometrical awareness it meets a vertex); for a vertex
-/// point the voxmap object's surface normal, the field's fall direction `g` (a corner has
-/// no normal of its own worth pushing along); for an edge point, between the two.
-glm::dvec3 pushDirectionOf(PointFeature feature, const glm::dvec3& n, const glm::dvec3& g) {
+/// The contact normal (toward the voxmap object), by what the point meets: the field it
+/// samples names the voxmap object's feature. A vertex there (surface points under
+/// geometrical awareness): the point's own normal `n`. A surface (vertex points, or any
+/// point without awareness): the surface's normal, the field's fall direction `g` (a
+/// corner or edge has no normal of its own worth pushing along), except that a surface
+/// point meeting a surface keeps `n`. An edge (edge points): between the two.
+glm::dvec3 pushDirectionOf(PointFeature feature, bool aware, const glm::dvec3& n, const glm::dvec3& g) {
   if (feature == PointFeature::Surface) return n;
-  if (feature == PointFeature::Vertex) return g;
+  if (feature == PointFeature::Vertex || !aware) return g;
   const glm::dvec3 between = n + g;
   const double length = glm::length(between);
   return length > 1e-6 ? between / length : n;
@@ -55,19 +57,17 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
   // unscaled sums (voxmap frame); the stiffness cap scales them at the end
   glm::dvec3 force(0.0);
   glm::dvec3 torque(0.0);
-  double weightedCount = 0.0;
   for (const PointContact& c : contacts) {
     const glm::dvec3 p = apply(shellToVoxmap, glm::dvec3(shell.positionsLocal[c.point]));
     const glm::dvec3 n = applyRotation(shellToVoxmap, glm::dvec3(shell.normalsLocal[c.point]));
     const PointFeature feature = shell.features[c.point];
     glm::dvec3 g = fallDirection(voxmap, c.ijkVoxel, shifts[static_cast<std::size_t>(feature)]);
     if (g == glm::dvec3(0.0)) g = n;
-    const glm::dvec3 pushDirection = pushDirectionOf(feature, n, g);
-    const double depth = glm::dot(p - grid.voxelCentre(c.ijkVoxel), g) +
+    const glm::dvec3 pushDirection = pushDirectionOf(feature, params.geometricalAwareness, n, g);
+    const double depth = glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +
                          static_cast<double>(params.forceLayer - c.value) * s;
     if (depth <= 0.0) continue;
     ++out.pushingPoints;
-    weightedCount += std::min(1.0, depth / s);
     out.maxDepthM = std::max(out.maxDepthM, depth);
     // approach speed along n, world frame
     const glm::dvec3 pWorld = apply(voxmapMotion.poseWorld, p);
@@ -81,7 +81,8 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     force += f;
     torque += glm::cross(p - shellComInVoxmap, f);
   }
-  const double scale = weightedCount > kStiffContacts ? double(kStiffContacts) / weightedCount : 1.0;
+  const double scale =
+      out.pushingPoints > kStiffContacts ? double(kStiffContacts) / double(out.pushingPoints) : 1.0;
   out.forceOnShellWorld = applyRotation(voxmapMotion.poseWorld, force * scale);
   out.torqueOnShellWorld = applyRotation(voxmapMotion.poseWorld, torque * scale);
   out.forceOnVoxmapWorld = -out.forceOnShellWorld;

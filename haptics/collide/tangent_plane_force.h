@@ -3,24 +3,27 @@
 /// point sampling found, for one pointshell object against one voxmap object.
 ///
 /// For a contact point p (voxmap frame) with unit normal n (the pointshell object's
-/// outward normal, so it points toward the voxmap object) in voxel of centre c and value
-/// v, the depth is d = (p − c)·g + (F − v)·s: how far p has crossed the plane through c
-/// normal to g, plus a voxel per layer it lies beyond the force layer F. DESIGN §4.4
-/// takes g = n; we take g = the unit direction in which the sampled field falls (central
-/// differences of its six neighbours; n where they are all equal). Then d is continuous
-/// where the point crosses from voxel to voxel (a layer deeper adds s exactly as the
-/// plane term loses it), whereas with g = n a corner point with a diagonal normal gains
-/// or loses up to 0.58·s at every crossing, and those force steps pump energy into a
-/// box resting on its corners until it rocks over. A point with d > 0 pushes with
-/// k·d + b·v_u along −u on the pointshell object (v_u: approach speed along u; the sum is
-/// kept ≥ 0, contacts never pull), where u is the contact normal of the features that
-/// meet: n for a surface point (it meets a vertex), g for a vertex point (it meets a
-/// surface; with u = n a box standing on its corners, whose corner normals are diagonal,
-/// is pushed sideways by whatever corner sits deepest and slides off), between n and g
-/// for an edge point (also without geometrical awareness: the labels stay). Pushing points count by
-/// min(1, d/s); when the count exceeds kStiffContacts, k and b are scaled by
-/// kStiffContacts / count, so that the total stiffness stays bounded. Force and torque are summed in the voxmap frame, turned to
-/// world, and applied equal and opposite to the two objects.
+/// outward normal, so it points toward the voxmap object) in a voxel of centre c and
+/// value v, the depth is d = (p − c)·u + (F − v)·s: how far p has crossed the plane
+/// through c normal to u, plus a voxel per layer it lies beyond the force layer F; a point
+/// with d > 0 pushes the pointshell object with k·d + b·v_u along −u (v_u: approach speed
+/// along u; never negative: contacts do not pull). Depth and force share u, so each
+/// point's force is the gradient of k·d²/2 within a voxel (conservative).
+///
+/// DESIGN §4.4 takes u = n for every point. We take u by the features that meet (the
+/// field sampled names the voxmap object's): n for a surface point; the voxmap surface's
+/// normal g, the unit direction in which the sampled field falls (central differences of
+/// the six neighbours), for a vertex point, and for an edge point without geometrical
+/// awareness (both meet a surface); between n and g where edge meets edge. With u = n a
+/// box standing on its corners, whose normals are diagonal, was pushed sideways by
+/// whichever corner sat deepest and slid off a frictionless plate; and a diagonal u gains
+/// up to 0.42·s of depth at every voxel crossing, which rocked it over. With u = g for a
+/// face-parallel surface d is continuous across voxels.
+///
+/// When more than kStiffContacts points push, k and b are scaled by kStiffContacts /
+/// count, so that the total stiffness stays bounded however many points touch. Force and
+/// torque are summed in the voxmap frame, turned to world, and applied equal and opposite
+/// to the two objects.
 
 #include <cstdint>
 #include <span>

@@ -192,6 +192,30 @@ TEST(Simulation, PegSlidesIntoItsHoleWithoutJamming) {
   EXPECT_LT(std::hypot(at.x, at.y), 0.0002);
 }
 
+TEST(Simulation, LongBarOnHundredsOfShallowContactsStaysCalm) {
+  // without geometrical awareness a 90 mm bar lying on the plate touches it with
+  // hundreds of points at once; the stiffness cap must hold their sum
+  Scene scene;
+  scene.objects.push_back(test::plate());
+  scene.objects.push_back(test::meshObject("bar", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0002, 0.0001, 0.0025 + 0.0009)),
+              glm::dvec3(0.045, 0.0025, 0.0025));
+  }));
+  const SimModel model = test::freeModel(scene, {"bar"}, kVoxel, kGravity, false);
+  SimState state = makeSimState(model);
+  std::uint32_t contacts = 0;
+  double fastestSpin = 0.0;
+  runFree(model, state, 1500, [&](const SimState& s) {
+    contacts = std::max(contacts, s.last[0].contacts);
+    if (s.frame > 1000) fastestSpin = std::max(fastestSpin, glm::length(s.bodies[0].angularVelocityWorld));
+  });
+  EXPECT_GT(contacts, 200u);
+  EXPECT_LT(fastestSpin, 0.05) << "rad/s; now " << state.bodies[0].angularVelocityWorld.x << " "
+                                << state.bodies[0].angularVelocityWorld.y << " " << state.bodies[0].angularVelocityWorld.z;
+  const glm::dvec3 v = state.bodies[0].linearVelocityWorld;
+  EXPECT_LT(glm::length(v), 1e-3) << v.x << " " << v.y << " " << v.z;
+}
+
 TEST(Simulation, TwoMovingBoxesCollideWithEqualAndOppositeForces) {
   Scene scene;
   for (int i = 0; i < 2; ++i) {
