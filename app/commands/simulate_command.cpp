@@ -47,6 +47,9 @@ int runSimulate(const CommandContext& c) {
   if (const auto offset = c.args.value("point-offset")) {
     options.pointDisplacementM = parseLengthM(*offset, "point-offset", LengthSign::Any);
   }
+  if (const auto layer = c.args.value("point-layer")) {
+    options.pointFreeLayer = static_cast<int>(std::min<std::uint64_t>(parseUnsigned(*layer, "point-layer"), 1000));
+  }
   options.sim.geometricalAwareness = !c.args.has("no-awareness");
   const CacheOptions cache{c.args.value("cache-dir").value_or((userCacheDir() / "voxels").string()),
                            !c.args.has("no-cache")};
@@ -165,6 +168,7 @@ Command simulateCommand() {
       {"voxel-size", 0, "LENGTH", "voxel size of the static scene, e.g. 0.35mm (default 1mm)"},
       {"point-spacing", 0, "LENGTH", "point spacing of the moving objects (default: the voxel size)"},
       {"point-offset", 0, "LENGTH", "move every point along its normal, negative inward (e.g. -0.175mm)"},
+      {"point-layer", 0, "K", "take points from the free-space layer K voxels out (0 … 8; collision offset)"},
       {"no-awareness", 0, "", "turn geometrical awareness off (every point samples the surface field)"},
       {"duration", 0, "SECONDS", "simulated time (default: the longest script)"},
       {"trace", 0, "FILE.csv", "write the per-frame trace"},

@@ -78,6 +78,33 @@ private:
   Map edges_;
 };
 
+/// The voxels of the free-space layer `layer` around `meshes` (surface field value
+/// 2 + layer), marked with kSurfaceBit, on the grid of their voxmap.
+HyperchunkBlocks<std::uint8_t> freeLayerBits(std::span<const TriangleMesh* const> meshes, double voxelSizeM,
+                                             int layer, int threads, VoxelGrid& grid) {
+  VoxelizeOptions options;
+  options.voxelSizeM = voxelSizeM;
+  options.buildFeatureFields = false;
+  options.threads = threads;
+  const Voxmap voxmap = voxelize(meshes, {}, options).voxmap;
+  grid = voxmap.grid();
+  HyperchunkBlocks<std::uint8_t> bits(grid.dimsHyper);
+  const std::uint8_t wanted = distanceValue(layer);
+  const glm::ivec3 chunks = grid.dimsChunks();
+  for (int cz = 0; cz < chunks.z; ++cz) {
+    for (int cy = 0; cy < chunks.y; ++cy) {
+      for (int cx = 0; cx < chunks.x; ++cx) {
+        if (voxmap.chunkDistance({cx, cy, cz}) != 0) continue;
+        for (int i = 0; i < kVoxelsPerChunk; ++i) {
+          const glm::ivec3 v = glm::ivec3(cx, cy, cz) * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
+          if (voxmap.value(v, Field::Surface) == wanted) bits.findOrCreate({cx, cy, cz}, 0)[static_cast<std::size_t>(i)] = kSurfaceBit;
+        }
+      }
+    }
+  }
+  return bits;
+}
+
 }  // namespace
 
 std::size_t Pointshell::count(PointFeature feature) const {
@@ -95,6 +122,10 @@ void checkPointshellOptions(const PointshellOptions& options) {
   if (!(s > 0.0) || !std::isfinite(s)) {
     throw Error("point spacing must be a positive number of metres, not " + std::to_string(s));
   }
+  if (options.freeLayer < 0 || options.freeLayer > kMaxFreeLayer) {
+    throw Error("pointshell free layer must be 0 (surface) to " + std::to_string(kMaxFreeLayer) + ", not " +
+                std::to_string(options.freeLayer));
+  }
 }
 
 Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::span<const MeshFeatures> features,
@@ -106,7 +137,7 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::spa
     for (const glm::vec3& p : mesh->positionsWorld) bounds.add(glm::dvec3(p));
   }
   if (bounds.empty()) throw Error("no triangles to make a pointshell of");
-  const VoxelGrid grid = gridAround(bounds, s, 1);
+  VoxelGrid grid = gridAround(bounds, s, 1);
   std::vector<FeatureGeometry> geometry;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     geometry.push_back({meshes[i], i < features.size() ? &features[i] : nullptr});
@@ -115,7 +146,11 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::spa
     if (!progress) return {};
     return [&progress, begin, end](double f) { progress(begin + (end - begin) * f); };
   };
-  const HyperchunkBlocks<std::uint8_t> bits = rasterizeFeatures(grid, geometry, options.threads, stage(0.0, 0.3));
+  const HyperchunkBlocks<std::uint8_t> layerBits =
+      options.freeLayer == 0 ? HyperchunkBlocks<std::uint8_t>(glm::ivec3(0))
+                             : freeLayerBits(meshes, s, options.freeLayer, options.threads, grid);
+  const HyperchunkBlocks<std::uint8_t> featureBits = rasterizeFeatures(grid, geometry, options.threads, stage(0.0, 0.3));
+  const HyperchunkBlocks<std::uint8_t>& bits = options.freeLayer == 0 ? featureBits : layerBits;
 
   // the chunks holding surface voxels, in tree order (hyperchunk, then chunk in hyperchunk)
   struct ChunkRef {
@@ -155,6 +190,8 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::spa
   const EmbreeScene scene(meshes);
   const PseudoNormals pseudoNormals(meshes);
   const FeatureNormals featureNormals(grid, features, pseudoNormals);
+  // a free-layer voxel's centre lies within (layer + 1) voxel diagonals of the surface
+  const double searchM = (options.freeLayer + 1) * s * std::sqrt(3.0);
   parallelFor(
       chunks.size(), options.threads,
       [&](std::size_t c) {
@@ -165,11 +202,22 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::spa
           if (!(b & kSurfaceBit)) continue;
           const glm::ivec3 v = chunks[c].ijkChunk * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
           const glm::dvec3 centre = grid.voxelCentre(v);
-          const PointFeature feature = (b & kVertexBit) ? PointFeature::Vertex
-                                       : (b & kEdgeBit) ? PointFeature::Edge
-                                                        : PointFeature::Surface;
+          PointFeature feature = (b & kVertexBit) ? PointFeature::Vertex
+                                 : (b & kEdgeBit) ? PointFeature::Edge
+                                                  : PointFeature::Surface;
           glm::dvec3 normal(0.0, 0.0, 1.0);
-          if (const auto n = featureNormals.normalOf(v, feature)) {
+          if (options.freeLayer > 0) {
+            if (const auto nearest = scene.closestPoint(centre, searchM); nearest && nearest->distanceM > 0.0) {
+              normal = (centre - nearest->point) / nearest->distanceM;
+              // the label of the surface voxel the nearest surface point lies in
+              const glm::ivec3 surfaceVoxel = grid.voxelOf(nearest->point);
+              const auto* block = featureBits.find(surfaceVoxel >> kChunkEdgeLog2);
+              const std::uint8_t inherited = block ? (*block)[voxelInChunk(surfaceVoxel)] : 0;
+              feature = (inherited & kVertexBit) ? PointFeature::Vertex
+                        : (inherited & kEdgeBit) ? PointFeature::Edge
+                                                 : PointFeature::Surface;
+            }
+          } else if (const auto n = featureNormals.normalOf(v, feature)) {
             normal = *n;
           } else if (const auto nearest = scene.closestPoint(centre, s)) {
             // a surface voxel's centre is within half its diagonal of the surface

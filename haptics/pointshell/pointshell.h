@@ -27,8 +27,16 @@ struct PointshellOptions {
   /// Signed displacement of every point along its normal, m: negative moves points
   /// inward (mating surfaces, e.g. half a voxel for the ball in its socket).
   double displacementM = 0.0;
+  /// 0: points at the surface voxels. k in 1 … kMaxFreeLayer: points at the free-space
+  /// voxels k voxels (chessboard) outside the surface, for a collision offset beyond
+  /// what moving the force layer gives (paper §3.2); their normals point away from the
+  /// nearest surface point, their labels those of the surface voxel it lies in.
+  int freeLayer = 0;
   int threads = 0;  ///< 0: all cores
 };
+
+/// The outermost free-space layer a pointshell may be taken from (the 4-bit field range).
+inline constexpr int kMaxFreeLayer = 8;
 
 struct Pointshell {
   double pointSpacingM = 0.0;
@@ -45,7 +53,8 @@ struct Pointshell {
   double radiusAbout(const glm::dvec3& centreLocal) const;
 };
 
-/// Throws voxhap::Error when the point spacing is not a positive number of metres.
+/// Throws voxhap::Error when the point spacing is not a positive number of metres or the
+/// free layer is outside 0 … kMaxFreeLayer.
 void checkPointshellOptions(const PointshellOptions& options);
 
 /// Builds the pointshell of `meshes` (object-local frame); `features[i]` belongs to

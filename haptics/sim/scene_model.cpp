@@ -60,6 +60,7 @@ SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& mov
     PointshellOptions shellOptions;
     shellOptions.pointSpacingM = options.pointSpacingM;
     shellOptions.displacementM = options.pointDisplacementM;
+    shellOptions.freeLayer = options.pointFreeLayer;
     object.shell = options.pointshellFn(source, shellOptions, stage(static_cast<double>(1 + 2 * i)));
     if (moving.size() > 1) {
       voxelOptions.voxelSizeM = options.pointSpacingM;

@@ -36,6 +36,8 @@ struct SceneModelOptions {
   int bitsPerField = 4;
   /// Points displaced along their normals, m (negative: inward; mating surfaces).
   double pointDisplacementM = 0.0;
+  /// Take the moving objects' points from this free-space layer (0: the surface).
+  int pointFreeLayer = 0;
   VoxelizeObjectsFn voxelizeFn = voxelizeObjects;
   PointshellFn pointshellFn = pointshellOf;
 };

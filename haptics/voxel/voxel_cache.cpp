@@ -225,6 +225,7 @@ CachedPointshell pointshellCached(std::span<const SceneObject* const> objects, c
   ContentHash hash = geometryHash(CacheKind::Pointshell, objects);
   hash.addDouble(options.pointSpacingM);
   hash.addDouble(options.displacementM);
+  hash.add(options.freeLayer);
   const Digest128 key = hash.digest();
 
   checkPointshellOptions(options);

@@ -98,6 +98,38 @@ TEST(Pointshell, SameShellWhateverTheThreadCount) {
   }
 }
 
+TEST(Pointshell, FreeLayerLiesOutsideAtItsDistanceWithOutwardNormals) {
+  constexpr double s = 0.0005;
+  constexpr int layer = 3;
+  TriangleMesh cube;
+  appendBox(cube, glm::translate(glm::dmat4(1.0), glm::dvec3(0.00013, 0.00021, 0.00017)), glm::dvec3(0.005));
+  const TriangleMesh* meshes[] = {&cube};
+  const MeshFeatures features[] = {extractFeatures(cube, s)};
+  PointshellOptions options;
+  options.pointSpacingM = s;
+  options.freeLayer = layer;
+  const Pointshell shell = buildPointshell(meshes, features, options);
+  const Pointshell surface = shellOf(cube, s);
+  EXPECT_GT(shell.size(), surface.size());
+  const glm::dvec3 centre(0.00013, 0.00021, 0.00017);
+  for (std::size_t i = 0; i < shell.size(); ++i) {
+    const glm::dvec3 p = glm::dvec3(shell.positionsLocal[i]) - centre;
+    // exact distance to the cube's surface from outside
+    const glm::dvec3 out = glm::sign(p) * glm::max(glm::abs(p) - 0.005, 0.0);  // from the nearest surface point
+    const double distance = glm::length(out);
+    ASSERT_GT(distance, (layer - 0.5) * s) << i;
+    ASSERT_LT(distance, std::sqrt(3.0) * (layer + 1.5) * s) << i;
+    ASSERT_NEAR(glm::dot(glm::dvec3(shell.normalsLocal[i]), out / distance), 1.0, 1e-5) << i;
+    // beyond a corner the nearest surface point is the corner, whose voxel is a vertex voxel
+    if ((out.x != 0.0) + (out.y != 0.0) + (out.z != 0.0) == 3) {
+      ASSERT_EQ(shell.features[i], PointFeature::Vertex) << i;
+    }
+  }
+  EXPECT_GT(shell.count(PointFeature::Vertex), 8u);
+  options.freeLayer = kMaxFreeLayer + 1;
+  EXPECT_THROW(buildPointshell(meshes, features, options), Error);
+}
+
 TEST(Pointshell, RejectsBadSpacing) {
   const TriangleMesh s = sphere(0.01);
   const TriangleMesh* meshes[] = {&s};

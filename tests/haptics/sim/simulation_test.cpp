@@ -80,6 +80,24 @@ TEST(Simulation, RaisingTheForceLayerLiftsTheSphereByAVoxelPerLayer) {
   EXPECT_EQ(state.forceLayer, kDefaultForceLayer);
 }
 
+TEST(Simulation, PointsFromAFreeLayerHoldTheSphereThatManyVoxelsHigher) {
+  const Scene scene = sphereOverPlate(0.01, 0.003);
+  double gap[2];
+  for (int layer : {0, 2}) {
+    SceneModelOptions options;
+    options.staticVoxelSizeM = kVoxel;
+    options.pointSpacingM = kVoxel;
+    options.pointFreeLayer = layer;
+    options.sim.gravityWorld = kGravity;
+    SimModel model = buildSceneModel(scene, {"ball"}, options);
+    model.objects[0].coupled = false;
+    SimState state = makeSimState(model);
+    runFree(model, state, 1500, [](const SimState&) {});
+    gap[layer / 2] = test::lowestZ(scene.objects[1], objectPose(model, state, 0));
+  }
+  EXPECT_NEAR(gap[1] - gap[0], 2.0 * kVoxel, 0.75 * kVoxel);
+}
+
 TEST(Simulation, BoxRestsFlatOnAPlateWithNegligibleTorque) {
   const Scene scene = boxOverPlate(0.0008);
   const SimModel model = test::freeModel(scene, {"box"}, kVoxel, kGravity);
