@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/cache_options.h"
 #include "app/cli/command.h"
 #include "app/commands/commands.h"
 #include "app/scene_source.h"
@@ -51,8 +52,7 @@ int runSimulate(const CommandContext& c) {
     options.pointFreeLayer = static_cast<int>(std::min<std::uint64_t>(parseUnsigned(*layer, "point-layer"), 1000));
   }
   options.sim.geometricalAwareness = !c.args.has("no-awareness");
-  const CacheOptions cache{c.args.value("cache-dir").value_or((userCacheDir() / "voxels").string()),
-                           !c.args.has("no-cache")};
+  const CacheOptions cache = voxelCacheOptions(c.args);
   options.voxelizeFn = [&](std::span<const SceneObject* const> objects, const VoxelizeOptions& o,
                            const ProgressFn& progress) {
     CachedVoxelization v = voxelizeCached(objects, o, cache, progress);
@@ -172,8 +172,8 @@ Command simulateCommand() {
       {"no-awareness", 0, "", "turn geometrical awareness off (every point samples the surface field)"},
       {"duration", 0, "SECONDS", "simulated time (default: the longest script)"},
       {"trace", 0, "FILE.csv", "write the per-frame trace"},
-      {"cache-dir", 0, "DIR", "voxel cache folder (default ~/.cache/voxhap/voxels)"},
-      {"no-cache", 0, "", "build voxels afresh and keep nothing"},
+      kCacheDirOption,
+      kNoCacheOption,
       {"json", 0, "", "print one JSON summary on stdout"}};
   simulate.run = runSimulate;
   return simulate;

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/cache_options.h"
 #include "app/cli/command.h"
 #include "app/commands/commands.h"
 #include "app/scene_source.h"
@@ -137,9 +138,7 @@ int runVoxelize(const CommandContext& c) {
   std::optional<SliceSpec> slice;
   if (c.args.has("slice") != c.args.has("png")) throw UsageError("--slice and --png go together");
   if (c.args.has("slice")) slice = parseSlice(*c.args.value("slice"));
-  CacheOptions cache;
-  cache.directory = c.args.value("cache-dir").value_or((userCacheDir() / "voxels").string());
-  cache.enabled = !c.args.has("no-cache");
+  const CacheOptions cache = voxelCacheOptions(c.args);
 
   const std::uint64_t seed = c.args.value("seed") ? parseUnsigned(*c.args.value("seed"), "seed") : kDefaultSeed;
   const Scene scene = loadScene(c.args.positionals[0], seed, c.console);
@@ -222,8 +221,8 @@ Command voxelizeCommand() {
       {"bits", 0, "N", "bits per distance field: 2, 4 (default) or 8"},
       {"no-awareness", 0, "", "build the surface field only (no edge and vertex fields)"},
       {"json", 0, "", "print one JSON document on stdout instead of a table"},
-      {"cache-dir", 0, "DIR", "voxel cache folder (default under the user's cache folder)"},
-      {"no-cache", 0, "", "always voxelize; neither read nor write the cache"},
+      kCacheDirOption,
+      kNoCacheOption,
       {"slice", 0, "AXIS=COORD", "with --png: draw the fields across x, y or z at COORD"},
       {"png", 0, "FILE", "with --slice: where to write the picture"},
       {"seed", 0, "N", "seed of a generated scene (default 1)"},
