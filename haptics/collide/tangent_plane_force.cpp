@@ -31,8 +31,11 @@ glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8
 /// point without awareness): the surface's normal, the field's fall direction `g` (a
 /// corner or edge has no normal of its own worth pushing along), except that a surface
 /// point meeting a surface keeps `n`. An edge (edge points): between the two.
-glm::dvec3 pushDirectionOf(PointFeature feature, bool aware, const glm::dvec3& n, const glm::dvec3& g) {
+glm::dvec3 pushDirectionOf(const Voxmap& voxmap, const PointContact& contact, PointFeature feature, bool aware,
+                           std::uint8_t fieldShift, const glm::dvec3& n) {
   if (feature == PointFeature::Surface) return n;
+  glm::dvec3 g = fallDirection(voxmap, contact.ijkVoxel, fieldShift);
+  if (g == glm::dvec3(0.0)) g = n;
   if (feature == PointFeature::Vertex || !aware) return g;
   const glm::dvec3 between = n + g;
   const double length = glm::length(between);
@@ -61,15 +64,14 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     const glm::dvec3 p = apply(shellToVoxmap, glm::dvec3(shell.positionsLocal[c.point]));
     const glm::dvec3 n = applyRotation(shellToVoxmap, glm::dvec3(shell.normalsLocal[c.point]));
     const PointFeature feature = shell.features[c.point];
-    glm::dvec3 g = fallDirection(voxmap, c.ijkVoxel, shifts[static_cast<std::size_t>(feature)]);
-    if (g == glm::dvec3(0.0)) g = n;
-    const glm::dvec3 pushDirection = pushDirectionOf(feature, params.geometricalAwareness, n, g);
+    const glm::dvec3 pushDirection = pushDirectionOf(voxmap, c, feature, params.geometricalAwareness,
+                                                     shifts[static_cast<std::size_t>(feature)], n);
     const double depth = glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +
                          static_cast<double>(params.forceLayer - c.value) * s;
     if (depth <= 0.0) continue;
     ++out.pushingPoints;
     out.maxDepthM = std::max(out.maxDepthM, depth);
-    // approach speed along n, world frame
+    // approach speed along the push direction, world frame
     const glm::dvec3 pWorld = apply(voxmapMotion.poseWorld, p);
     const glm::dvec3 vShell = shellMotion.linearVelocityWorld +
                               glm::cross(shellMotion.angularVelocityWorld, pWorld - shellComWorld);
