@@ -52,6 +52,7 @@ int runSimulate(const CommandContext& c) {
     options.pointFreeLayer = static_cast<int>(std::min<std::uint64_t>(parseUnsigned(*layer, "point-layer"), 1000));
   }
   options.sim.geometricalAwareness = !c.args.has("no-awareness");
+  options.sim.preContactDamping = c.args.has("pre-contact-damping");
   const CacheOptions cache = voxelCacheOptions(c.args);
   options.voxelizeFn = [&](std::span<const SceneObject* const> objects, const VoxelizeOptions& o,
                            const ProgressFn& progress) {
@@ -170,6 +171,7 @@ Command simulateCommand() {
       {"point-offset", 0, "LENGTH", "move every point along its normal, negative inward (e.g. -0.175mm)"},
       {"point-layer", 0, "K", "take points from the free-space layer K voxels out (0 … 8; collision offset)"},
       {"no-awareness", 0, "", "turn geometrical awareness off (every point samples the surface field)"},
+      {"pre-contact-damping", 0, "", "damp points approaching in the layer just outside the force layer"},
       {"duration", 0, "SECONDS", "simulated time (default: the longest script)"},
       {"trace", 0, "FILE.csv", "write the per-frame trace"},
       kCacheDirOption,

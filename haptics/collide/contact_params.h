@@ -33,6 +33,19 @@ struct ContactParams {
   double pointStiffnessNPerM = 0.0;
   /// Damping of one point in contact along its normal, N·s/m (capped like the stiffness).
   double pointDampingNsPerM = 0.0;
+  /// Pre-contact damping: points in the free layer just outside the force layer
+  /// (value forceLayer + 1) that approach feel the damper alone, no spring, so that
+  /// contact begins gently. Their damping is capped on its own like the contacts'. Off by
+  /// default: it adds a viscous feel before contact and tests ~2x the points near it.
+  /// The sampler then reads up to sampledLayer().
+  bool preContactDamping = false;
+
+  /// The largest value a point test must report: the force layer, or the layer beyond it
+  /// when pre-contact damping is on (never beyond the encoding's `maxValue`).
+  std::uint8_t sampledLayer(std::uint8_t maxValue) const {
+    const int layer = forceLayer + (preContactDamping ? 1 : 0);
+    return static_cast<std::uint8_t>(layer < maxValue ? layer : maxValue);
+  }
 };
 
 }  // namespace voxhap

@@ -37,7 +37,7 @@ std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, cons
 }
 
 std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                           const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t forceLayer,
+                           const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t maxValue,
                            std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept {
   const glm::vec3* positions = shell.positionsLocal.data();
   const PointFeature* features = shell.features.data();
@@ -45,8 +45,8 @@ std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const 
   for (std::uint32_t i = first; i < last; ++i) {
     const glm::ivec3 ijk = voxelOf(transform.apply(positions[i]));
     const std::uint8_t value = fieldValue(voxmap, ijk, fieldShifts[static_cast<std::size_t>(features[i])]);
-    // value − 1 wraps far (0) to 255, so one compare keeps [1, forceLayer]
-    if (static_cast<std::uint8_t>(value - 1u) < forceLayer) contacts[found++] = {i, ijk, value};
+    // value − 1 wraps far (0) to 255, so one compare keeps [1, maxValue]
+    if (static_cast<std::uint8_t>(value - 1u) < maxValue) contacts[found++] = {i, ijk, value};
   }
   return found;
 }

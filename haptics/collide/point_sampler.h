@@ -42,10 +42,11 @@ struct VoxelTransform {
 std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, const VoxelEncoding& encoding);
 
 /// Tests points [first, last) of `shell` against `voxmap`; writes every point whose
-/// value lies in [1, forceLayer] to `contacts` (room for last − first entries) and
-/// returns how many it wrote. `fieldShifts` comes from fieldShiftsByFeature.
+/// value lies in [1, maxValue] (the force layer, or one beyond for pre-contact damping)
+/// to `contacts` (room for last − first entries) and returns how many it wrote.
+/// `fieldShifts` comes from fieldShiftsByFeature.
 std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                           const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t forceLayer,
+                           const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t maxValue,
                            std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept;
 
 /// The field value point `index` reads (0 … 2^bits − 1); for tests and proximity.

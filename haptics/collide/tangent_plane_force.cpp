@@ -57,20 +57,23 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
   const double s = grid.voxelSizeM;
   const auto shifts = fieldShiftsByFeature(params.geometricalAwareness, voxmap.encoding());
 
-  // unscaled sums (voxmap frame); the stiffness cap scales them at the end
-  glm::dvec3 force(0.0);
-  glm::dvec3 torque(0.0);
+  // unscaled sums (voxmap frame), in contact [0] and damped before contact [1]; each is
+  // capped on its own at the end
+  glm::dvec3 force[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+  glm::dvec3 torque[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+  std::uint32_t acting[2] = {0, 0};
   for (const PointContact& c : contacts) {
     const glm::dvec3 p = apply(shellToVoxmap, glm::dvec3(shell.positionsLocal[c.point]));
     const glm::dvec3 n = applyRotation(shellToVoxmap, glm::dvec3(shell.normalsLocal[c.point]));
     const PointFeature feature = shell.features[c.point];
     const glm::dvec3 pushDirection = pushDirectionOf(voxmap, c, feature, params.geometricalAwareness,
                                                      shifts[static_cast<std::size_t>(feature)], n);
-    const double depth = glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +
-                         static_cast<double>(params.forceLayer - c.value) * s;
-    if (depth <= 0.0) continue;
-    ++out.pushingPoints;
-    out.maxDepthM = std::max(out.maxDepthM, depth);
+    const bool beforeContact = c.value > params.forceLayer;
+    const double depth = beforeContact ? 0.0
+                                       : glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +
+                                             static_cast<double>(params.forceLayer - c.value) * s;
+    out.contactPoints += beforeContact ? 0 : 1;
+    if (!beforeContact && depth <= 0.0) continue;
     // approach speed along the push direction, world frame
     const glm::dvec3 pWorld = apply(voxmapMotion.poseWorld, p);
     const glm::dvec3 vShell = shellMotion.linearVelocityWorld +
@@ -79,14 +82,24 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
                                glm::cross(voxmapMotion.angularVelocityWorld, pWorld - voxmapComWorld);
     const double approach = glm::dot(vShell - vVoxmap, applyRotation(voxmapMotion.poseWorld, pushDirection));
     const double push = std::max(0.0, params.pointStiffnessNPerM * depth + params.pointDampingNsPerM * approach);
+    if (push == 0.0) continue;
+    out.maxDepthM = std::max(out.maxDepthM, depth);
     const glm::dvec3 f = -push * pushDirection;
-    force += f;
-    torque += glm::cross(p - shellComInVoxmap, f);
+    const int kind = beforeContact ? 1 : 0;
+    ++acting[kind];
+    force[kind] += f;
+    torque[kind] += glm::cross(p - shellComInVoxmap, f);
   }
-  const double scale =
-      out.pushingPoints > kStiffContacts ? double(kStiffContacts) / double(out.pushingPoints) : 1.0;
-  out.forceOnShellWorld = applyRotation(voxmapMotion.poseWorld, force * scale);
-  out.torqueOnShellWorld = applyRotation(voxmapMotion.poseWorld, torque * scale);
+  glm::dvec3 totalForce(0.0);
+  glm::dvec3 totalTorque(0.0);
+  for (int kind = 0; kind < 2; ++kind) {
+    const double scale = acting[kind] > kStiffContacts ? double(kStiffContacts) / double(acting[kind]) : 1.0;
+    totalForce += force[kind] * scale;
+    totalTorque += torque[kind] * scale;
+  }
+  out.pushingPoints = acting[0] + acting[1];
+  out.forceOnShellWorld = applyRotation(voxmapMotion.poseWorld, totalForce);
+  out.torqueOnShellWorld = applyRotation(voxmapMotion.poseWorld, totalTorque);
   out.forceOnVoxmapWorld = -out.forceOnShellWorld;
   out.torqueOnVoxmapWorld =
       -out.torqueOnShellWorld - glm::cross(shellComWorld - voxmapComWorld, out.forceOnShellWorld);

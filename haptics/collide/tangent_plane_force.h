@@ -20,6 +20,9 @@
 /// up to 0.42·s of depth at every voxel crossing, which rocked it over. With u = g for a
 /// face-parallel surface d is continuous across voxels.
 ///
+/// Contacts beyond the force layer (value F + 1, sampled for pre-contact damping) only
+/// damp: b·v_u along −u while they approach, nothing otherwise.
+///
 /// When more than kStiffContacts points push, k and b are scaled by kStiffContacts /
 /// count, so that the total stiffness stays bounded however many points touch. Force and
 /// torque are summed in the voxmap frame, turned to world, and applied equal and opposite
@@ -50,7 +53,8 @@ struct PairWrench {
   glm::dvec3 torqueOnShellWorld{0.0};    ///< N·m
   glm::dvec3 forceOnVoxmapWorld{0.0};    ///< N, = −forceOnShellWorld
   glm::dvec3 torqueOnVoxmapWorld{0.0};   ///< N·m
-  std::uint32_t pushingPoints = 0;       ///< contacts with depth > 0
+  std::uint32_t contactPoints = 0;       ///< contacts at or inside the force layer
+  std::uint32_t pushingPoints = 0;       ///< contacts pushing (depth > 0, or damping before contact)
   double maxDepthM = 0.0;                ///< largest depth d, m
 };
 

@@ -45,6 +45,7 @@ ContactParams pairParams(const SimModel& model, const PairModel& pair, const Sim
   ContactParams params;
   params.forceLayer = options.forceLayer;
   params.geometricalAwareness = options.geometricalAwareness;
+  params.preContactDamping = options.preContactDamping;
   params.pointStiffnessNPerM = inertia * omega * omega / kStiffContacts;
   params.pointDampingNsPerM = 2.0 * kContactDampingRatio * inertia * omega / kStiffContacts;
   return params;

@@ -75,6 +75,7 @@ struct SimOptions {
   glm::dvec3 gravityWorld{0.0};
   std::uint8_t forceLayer = kDefaultForceLayer;
   bool geometricalAwareness = true;
+  bool preContactDamping = false;  ///< see ContactParams
   DeviceLimits deviceLimits;
 };
 

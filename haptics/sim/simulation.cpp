@@ -100,21 +100,22 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
     const VoxelTransform transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
     const auto shifts = fieldShiftsByFeature(params.geometricalAwareness, voxmap.encoding());
     const auto points = static_cast<std::uint32_t>(shellObject.shell.size());
-    const std::uint32_t found = samplePoints(shellObject.shell, voxmap, transform, shifts, params.forceLayer, 0,
+    const std::uint32_t found = samplePoints(shellObject.shell, voxmap, transform, shifts,
+                                             params.sampledLayer(voxmap.encoding().maxValue()), 0,
                                              points, state.scratch.data());
     const PairWrench w = tangentPlaneWrench(shellObject.shell, voxmap, params, shellMotion, voxmapMotion,
                                             std::span(state.scratch.data(), found));
     ObjectFrame& s = state.last[static_cast<std::size_t>(pair.shellObject)];
     s.contactForceWorld += w.forceOnShellWorld;
     s.contactTorqueWorld += w.torqueOnShellWorld;
-    s.contacts += found;
+    s.contacts += w.contactPoints;
     s.tested += points;
     s.maxDepthM = std::max(s.maxDepthM, w.maxDepthM);
     if (pair.voxmapObject != kStaticEnvironment) {
       ObjectFrame& v = state.last[static_cast<std::size_t>(pair.voxmapObject)];
       v.contactForceWorld += w.forceOnVoxmapWorld;
       v.contactTorqueWorld += w.torqueOnVoxmapWorld;
-      v.contacts += found;
+      v.contacts += w.contactPoints;
       v.maxDepthM = std::max(v.maxDepthM, w.maxDepthM);
     }
   }

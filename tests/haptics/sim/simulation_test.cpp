@@ -98,6 +98,31 @@ TEST(Simulation, PointsFromAFreeLayerHoldTheSphereThatManyVoxelsHigher) {
   EXPECT_NEAR(gap[1] - gap[0], 2.0 * kVoxel, 0.75 * kVoxel);
 }
 
+TEST(Simulation, PreContactDampingSlowsTheApproachBeforeContact) {
+  const Scene scene = sphereOverPlate(0.01, 0.004);
+  double speedAtContact[2];
+  for (int damped = 0; damped < 2; ++damped) {
+    SceneModelOptions options;
+    options.staticVoxelSizeM = kVoxel;
+    options.pointSpacingM = kVoxel;
+    options.sim.preContactDamping = damped == 1;
+    SimModel model = buildSceneModel(scene, {"ball"}, options);
+    model.objects[0].coupled = false;
+    SimState state = makeSimState(model);
+    state.bodies[0].linearVelocityWorld = glm::dvec3(0.0, 0.0, -0.1);
+    const double energyBefore = kineticEnergyJ(model.objects[0].body, state.bodies[0]);
+    speedAtContact[damped] = -1.0;
+    runFree(model, state, 400, [&](const SimState& s) {
+      if (speedAtContact[damped] < 0.0 && s.last[0].contacts > 0) {
+        speedAtContact[damped] = glm::length(s.bodies[0].linearVelocityWorld);
+      }
+      EXPECT_LE(kineticEnergyJ(model.objects[0].body, s.bodies[0]), energyBefore * (1.0 + 1e-9));
+    });
+    ASSERT_GT(speedAtContact[damped], 0.0) << "no contact";
+  }
+  EXPECT_LT(speedAtContact[1], 0.9 * speedAtContact[0]);
+}
+
 TEST(Simulation, BoxRestsFlatOnAPlateWithNegligibleTorque) {
   const Scene scene = boxOverPlate(0.0008);
   const SimModel model = test::freeModel(scene, {"box"}, kVoxel, kGravity);
