@@ -53,16 +53,6 @@ ContactParams pairParams(const SimModel& model, const PairModel& pair, const Sim
 
 }  // namespace
 
-double SimModel::maxTravelM(int object) const {
-  double travel = std::numeric_limits<double>::infinity();
-  for (const PairModel& pair : pairs) {
-    if (pair.shellObject != object && pair.voxmapObject != object) continue;
-    const double half = 0.5 * voxmapOf(pair).grid().voxelSizeM;
-    travel = std::min(travel, pair.voxmapObject == kStaticEnvironment ? half : 0.5 * half);
-  }
-  return travel;
-}
-
 SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxmap> staticVoxmap,
                       const SimOptions& options) {
   if (!(options.dtS > 0.0) || !std::isfinite(options.dtS)) throw Error("frame period must be positive");
@@ -98,7 +88,16 @@ SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxm
       model.pairs.push_back({aIsShell ? i : j, aIsShell ? j : i, {}});
     }
   }
-  for (PairModel& pair : model.pairs) pair.params = pairParams(model, pair, options);
+  for (MovingObjectModel& object : model.objects) object.maxTravelM = std::numeric_limits<double>::infinity();
+  for (PairModel& pair : model.pairs) {
+    pair.params = pairParams(model, pair, options);
+    const double half = 0.5 * model.voxmapOf(pair).grid().voxelSizeM;
+    for (const int i : {pair.shellObject, pair.voxmapObject}) {
+      if (i == kStaticEnvironment) continue;
+      double& travel = model.objects[static_cast<std::size_t>(i)].maxTravelM;
+      travel = std::min(travel, pair.voxmapObject == kStaticEnvironment ? half : 0.5 * half);
+    }
+  }
   return model;
 }
 

@@ -41,6 +41,9 @@ struct MovingObjectModel {
   double shellRadiusM = 0.0;     ///< largest distance of a point from the centre of mass, m
   glm::dvec3 shellCentreLocal{0.0};  ///< centre of the pointshell's bounding sphere, m
   double shellBoundRadiusM = 0.0;    ///< radius of that sphere, m
+  /// Most any of its points may move in a frame, m: half the finest voxel of its pairs,
+  /// halved again when both objects of the pair move (infinite when it has no pair).
+  double maxTravelM = 0.0;
   bool coupled = false;          ///< a handle drives it through a virtual coupling
   CouplingGains gains;           ///< of that coupling
 };
@@ -64,9 +67,6 @@ struct SimModel {
     return pair.voxmapObject == kStaticEnvironment ? *staticVoxmap
                                                    : objects[static_cast<std::size_t>(pair.voxmapObject)].voxmap;
   }
-  /// Most any point of object `i` may move in a frame, m: half the finest voxel of its
-  /// pairs, halved again when both objects of the pair move.
-  double maxTravelM(int object) const;
 };
 
 /// Options of makeSimModel.

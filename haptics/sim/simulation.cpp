@@ -136,7 +136,7 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
     }
     const RigidBodyState before = body;
     integrate(object.body, body, force, torque, model.dtS);
-    f.travelLimited = limitTravel(before, body, object.shellRadiusM, model.maxTravelM(static_cast<int>(i)));
+    f.travelLimited = limitTravel(before, body, object.shellRadiusM, object.maxTravelM);
     state.travelLimitedFrames += f.travelLimited ? 1 : 0;
   }
   ++state.frame;
