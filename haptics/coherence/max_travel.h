@@ -1,14 +1,26 @@
 #pragma once
 /// MaxTravel and the per-queue quotas of time-critical sampling (paper §5 Eqs. 2 and 3,
-/// DESIGN §4.5). A point i voxels from contact cannot reach contact before it has moved
-/// i·s; if no point moves more than MaxTravel per frame, testing a point of queue i once
-/// every i·s / MaxTravel frames is enough. Spending the frame's capacity n_cap on the
-/// n_mand points in contact first and on a share of every other queue gives
+/// DESIGN §4.5). If no point moves more than MaxTravel per frame, a point that needs to
+/// travel d before it can reach contact need only be tested once every d / MaxTravel
+/// frames. Spending the frame's capacity n_cap on the n_mand mandatory points first and on
+/// a share of every other queue gives
 ///
-///   (Eq. 2)  MaxTravel = s · (n_cap − n_mand) / Σ_i (n_i / i),   at most `upperBoundM`
-///   (Eq. 3)  m_i = ceil(n_i · MaxTravel / (i · s))
+///   (Eq. 2)  MaxTravel = s · (n_cap − n_mand) / Σ_i (n_i / d_i),   at most the upper bound
+///   (Eq. 3)  m_i = ceil(n_i · MaxTravel / (d_i · s))
+///
+/// with d_i the whole voxels a point of queue i must cross before it can reach a voxel of
+/// the force layer. The paper writes d_i = i. Our fields hold chessboard distances in whole
+/// voxels, and a point anywhere in a voxel one layer beyond the force layer may lie on
+/// that layer's boundary: it is 0 voxels from contact, not 1. So queue 1 (value F + 1)
+/// is mandatory too and d_i = i − 1; with d_i = i a point of queue 1 tested every other
+/// frame at MaxTravel = s/2, or every tenth at s/10, could sit untested in a force-layer
+/// voxel (the property test of coherence_test.cpp found it).
 ///
 /// When n_mand ≥ n_cap nothing may move (MaxTravel = 0) and the deadline is missed.
+///
+/// Several pairs share one capacity: every moving object's MaxTravel is its upper bound
+/// times one scale, so that a pair's relative travel per frame is the scale times the sum
+/// of its objects' bounds; travelScale() solves Eq. 2 for that scale.
 /// Everything here is noexcept and allocation-free.
 
 #include <cmath>
@@ -25,33 +37,71 @@ inline int queueForValue(std::uint8_t value, std::uint8_t forceLayer, std::uint8
   return value <= forceLayer ? 0 : value - forceLayer;
 }
 
+/// The queue of a point that read `value` in the field of its feature and `surfaceValue`
+/// in the surface field of the same voxel. Under geometrical awareness a surface point
+/// reads the vertex field, which is far across the middle of a face, yet turns interior
+/// (a contact) a voxel past the face: far from a vertex is not far from contact. So the
+/// surface field bounds the queue too: from surface value v the point crosses v − 3 whole
+/// voxels before it reaches a surface voxel, where the other fields may already read
+/// interior; that is queue v − 2 (one queue further out than voxelsToContact counts).
+inline int queueForSample(std::uint8_t value, std::uint8_t surfaceValue, std::uint8_t forceLayer,
+                          std::uint8_t maxValue) noexcept {
+  const int byFeature = queueForValue(value, forceLayer, maxValue);
+  const int bySurface = surfaceValue == 0 ? maxValue - 1 : (surfaceValue <= 3 ? 1 : surfaceValue - 2);
+  return byFeature < bySurface ? byFeature : bySurface;
+}
+
 /// Number of queues for a force layer and largest field value: 0 … maxValue + 1 − forceLayer.
 inline int queueCountFor(std::uint8_t forceLayer, std::uint8_t maxValue) noexcept {
   return maxValue + 2 - forceLayer;
 }
 
-/// What Eq. 2 allows this frame.
-struct TravelBudget {
-  double maxTravelM = 0.0;      ///< most any point may move this frame, m
-  bool deadlineMissed = false;  ///< more points in contact than the capacity
-};
+/// Queues 0 (in contact) and 1 (one layer out, possibly on the force layer's boundary)
+/// are tested every frame.
+inline constexpr int kMandatoryQueues = 2;
 
-/// Eq. 2: `queueCounts[i]` points in queue i (index 0, the mandatory queue, is read as
-/// n_mand), `capacityTests` point tests fit in a frame, voxel size `voxelSizeM`.
-inline TravelBudget maxTravel(double capacityTests, std::span<const std::uint32_t> queueCounts, double voxelSizeM,
-                              double upperBoundM) noexcept {
-  const double mandatory = queueCounts.empty() ? 0.0 : static_cast<double>(queueCounts[0]);
-  if (mandatory >= capacityTests) return {0.0, true};
-  double load = 0.0;  // Σ n_i / i
-  for (std::size_t i = 1; i < queueCounts.size(); ++i) load += static_cast<double>(queueCounts[i]) / static_cast<double>(i);
-  if (load == 0.0) return {upperBoundM, false};
-  const double travel = voxelSizeM * (capacityTests - mandatory) / load;
-  return {travel < upperBoundM ? travel : upperBoundM, false};
+/// d_i: whole voxels a point of queue `i` (≥ kMandatoryQueues) crosses before it can
+/// reach the force layer.
+inline int voxelsToContact(int i) noexcept { return i - 1; }
+
+/// Σ_i n_i / d_i over the free-space queues: the tests per frame that a relative travel
+/// of one voxel per frame costs.
+inline double queueLoad(std::span<const std::uint32_t> queueCounts) noexcept {
+  double load = 0.0;
+  for (std::size_t i = kMandatoryQueues; i < queueCounts.size(); ++i) {
+    load += static_cast<double>(queueCounts[i]) / voxelsToContact(static_cast<int>(i));
+  }
+  return load;
 }
 
-/// Eq. 3: how many of the `count` points of queue `i` (≥ 1) to test this frame.
-inline std::uint32_t queueQuota(std::uint32_t count, int i, double maxTravelM, double voxelSizeM) noexcept {
-  const double share = std::ceil(static_cast<double>(count) * maxTravelM / (static_cast<double>(i) * voxelSizeM));
+/// Points tested every frame.
+inline std::uint32_t mandatoryCount(std::span<const std::uint32_t> queueCounts) noexcept {
+  std::uint32_t n = 0;
+  for (std::size_t i = 0; i < queueCounts.size() && i < kMandatoryQueues; ++i) n += queueCounts[i];
+  return n;
+}
+
+/// What Eq. 2 allows this frame, as a fraction of every object's upper bound.
+struct TravelBudget {
+  double scale = 0.0;           ///< 0 … 1
+  bool deadlineMissed = false;  ///< more mandatory tests than the capacity
+};
+
+/// Eq. 2 over all pairs: `capacityTests` point tests fit in a frame, `mandatoryTests`
+/// must be done, and `loadAtFullTravel` = Σ over pairs of queueLoad · (relative travel at
+/// scale 1, in voxels of that pair) more are needed to let everything move by its bound.
+inline TravelBudget travelScale(double capacityTests, double mandatoryTests, double loadAtFullTravel) noexcept {
+  if (mandatoryTests >= capacityTests) return {0.0, true};
+  if (!(loadAtFullTravel > 0.0)) return {1.0, false};
+  const double scale = (capacityTests - mandatoryTests) / loadAtFullTravel;
+  return {scale < 1.0 ? scale : 1.0, false};
+}
+
+/// Eq. 3: how many of the `count` points of queue `i` to test this frame when the pair
+/// moves by at most `relativeTravelM` with voxels of `voxelSizeM`. All of a mandatory queue.
+inline std::uint32_t queueQuota(std::uint32_t count, int i, double relativeTravelM, double voxelSizeM) noexcept {
+  if (i < kMandatoryQueues) return count;
+  const double share = std::ceil(static_cast<double>(count) * relativeTravelM / (voxelsToContact(i) * voxelSizeM));
   return share >= static_cast<double>(count) ? count : static_cast<std::uint32_t>(share);
 }
 

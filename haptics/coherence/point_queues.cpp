@@ -53,6 +53,20 @@ void PointQueues::insertRange(std::uint32_t first, std::uint32_t last, int q) no
   for (std::uint32_t p = first; p < last; ++p) insert(p, q);
 }
 
+void PointQueues::assignAll(int q) noexcept {
+  std::fill(bits_.begin(), bits_.end(), 0u);
+  std::fill(summary_.begin(), summary_.end(), 0u);
+  std::fill(counts_.begin(), counts_.end(), 0u);
+  if (pointCount_ == 0) return;
+  std::uint32_t* w = words(q);
+  std::fill(w, w + wordCount_, ~0u);
+  if (pointCount_ % kWordBits) w[wordCount_ - 1] = (1u << (pointCount_ % kWordBits)) - 1u;
+  std::uint32_t* s = summary(q);
+  std::fill(s, s + summaryCount_, ~0u);
+  if (wordCount_ % kWordBits) s[summaryCount_ - 1] = (1u << (wordCount_ % kWordBits)) - 1u;
+  counts_[static_cast<std::size_t>(q)] = pointCount_;
+}
+
 std::uint32_t PointQueues::nextAtOrAfter(int q, std::uint32_t from) const noexcept {
   if (from >= pointCount_) return pointCount_;
   const std::uint32_t* w = words(q);
@@ -76,19 +90,31 @@ std::uint32_t PointQueues::nextAtOrAfter(int q, std::uint32_t from) const noexce
   return pointCount_;
 }
 
-std::uint32_t PointQueues::takeRoundRobin(int q, std::uint32_t m, std::span<std::uint32_t> out) noexcept {
+PointQueues::Sweep PointQueues::takeSweep(int q, std::uint32_t minPoints, std::uint64_t minIndices,
+                                         std::span<std::uint32_t> out) noexcept {
+  Sweep sweep;
+  if (pointCount_ == 0) return sweep;
   const auto qi = static_cast<std::size_t>(q);
-  const std::uint32_t wanted = std::min({m, counts_[qi], static_cast<std::uint32_t>(out.size())});
-  std::uint32_t written = 0;
-  std::uint32_t at = cursors_[qi];
-  while (written < wanted) {
-    std::uint32_t p = nextAtOrAfter(q, at);
-    if (p == pointCount_) p = nextAtOrAfter(q, 0);  // wrap round
-    out[written++] = p;
-    at = p + 1;
+  const std::uint64_t n = pointCount_;
+  const std::uint64_t mustCover = std::min<std::uint64_t>(minIndices, n);
+  const std::uint32_t cap = std::min(counts_[qi], static_cast<std::uint32_t>(out.size()));
+  // positions are unwrapped: start … start + n covers every index once
+  const std::uint64_t start = cursors_[qi];
+  std::uint64_t at = start;
+  while (sweep.taken < cap) {
+    const auto index = static_cast<std::uint32_t>(at % n);
+    std::uint32_t next = nextAtOrAfter(q, index);
+    std::uint64_t position = at - index + next;
+    if (next == pointCount_) position = at - index + n + nextAtOrAfter(q, 0);  // wrap round
+    if (position >= start + n) break;  // a full circle
+    if (sweep.taken >= minPoints && position >= start + mustCover) break;
+    out[sweep.taken++] = static_cast<std::uint32_t>(position % n);
+    at = position + 1;
   }
-  if (written > 0) cursors_[qi] = at >= pointCount_ ? 0 : at;
-  return written;
+  at = std::max(at, start + mustCover);
+  sweep.coveredIndices = at - start;
+  cursors_[qi] = static_cast<std::uint32_t>(at % n);
+  return sweep;
 }
 
 std::uint32_t PointQueues::takeAll(int q, std::span<std::uint32_t> out) const noexcept {

@@ -25,6 +25,8 @@ public:
   int queueCount() const noexcept { return static_cast<int>(counts_.size()); }
   /// Points in queue `q`.
   std::uint32_t count(int q) const noexcept { return counts_[static_cast<std::size_t>(q)]; }
+  /// Points in every queue, by queue.
+  std::span<const std::uint32_t> counts() const noexcept { return counts_; }
   /// The queue holding `point`, or −1 when it is in none.
   int queueOf(std::uint32_t point) const noexcept;
 
@@ -36,12 +38,20 @@ public:
   void move(std::uint32_t point, int from, int to) noexcept;
   /// Puts points [first, last) (in no queue) into queue `q` (a chunk coming back in range).
   void insertRange(std::uint32_t first, std::uint32_t last, int q) noexcept;
+  /// Empties every queue and puts all points into queue `q`, word by word.
+  void assignAll(int q) noexcept;
 
-  /// Writes the next `m` points of queue `q` after its cursor (wrapping round, each point
-  /// at most once) to `out` and advances the cursor past the last one; returns how many
-  /// it wrote (fewer when the queue holds fewer). Over successive frames every point of
-  /// the queue comes up in turn.
-  std::uint32_t takeRoundRobin(int q, std::uint32_t m, std::span<std::uint32_t> out) noexcept;
+  /// What one takeSweep call did.
+  struct Sweep {
+    std::uint32_t taken = 0;          ///< points written
+    std::uint64_t coveredIndices = 0;  ///< how far the cursor moved, in point indices (≤ pointCount)
+  };
+  /// Moves the cursor of queue `q` forward (wrapping round) and writes the points it passes
+  /// to `out`: at least `minPoints` of them (fewer when the queue holds fewer), and all of
+  /// those in the next `minIndices` indices. Each point at most once per call. Over
+  /// successive calls every point of the queue comes up in turn; one that is put in the
+  /// queue at any time comes up before the cursor has moved a further pointCount() indices.
+  Sweep takeSweep(int q, std::uint32_t minPoints, std::uint64_t minIndices, std::span<std::uint32_t> out) noexcept;
 
   /// Writes every point of queue `q` in index order to `out`; returns how many.
   std::uint32_t takeAll(int q, std::span<std::uint32_t> out) const noexcept;
@@ -63,7 +73,7 @@ private:
   std::vector<std::uint32_t> bits_;
   std::vector<std::uint32_t> summary_;
   std::vector<std::uint32_t> counts_;
-  std::vector<std::uint32_t> cursors_;  // next point to look at, per queue
+  std::vector<std::uint32_t> cursors_;  // next index to look at, per queue
 };
 
 }  // namespace voxhap

@@ -1,21 +1,8 @@
 #include "haptics/collide/point_sampler.h"
 
-#include <cmath>
-
 #include <glm/gtc/quaternion.hpp>
 
 namespace voxhap {
-namespace {
-
-glm::ivec3 voxelOf(const glm::vec3& u) {
-  return {static_cast<int>(std::floor(u.x)), static_cast<int>(std::floor(u.y)), static_cast<int>(std::floor(u.z))};
-}
-
-std::uint8_t fieldValue(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift) {
-  return static_cast<std::uint8_t>((voxmap.word(ijk) >> shift) & voxmap.encoding().fieldMask());
-}
-
-}  // namespace
 
 VoxelTransform VoxelTransform::make(const Pose& shellToVoxmap, const VoxelGrid& grid) {
   const double inv = 1.0 / grid.voxelSizeM;
@@ -39,22 +26,13 @@ std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, cons
 std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                            const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t maxValue,
                            std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept {
-  const glm::vec3* positions = shell.positionsLocal.data();
-  const PointFeature* features = shell.features.data();
   std::uint32_t found = 0;
   for (std::uint32_t i = first; i < last; ++i) {
-    const glm::ivec3 ijk = voxelOf(transform.apply(positions[i]));
-    const std::uint8_t value = fieldValue(voxmap, ijk, fieldShifts[static_cast<std::size_t>(features[i])]);
+    const PointSample sample = samplePointAt(shell, voxmap, transform, fieldShifts, i);
     // value − 1 wraps far (0) to 255, so one compare keeps [1, maxValue]
-    if (static_cast<std::uint8_t>(value - 1u) < maxValue) contacts[found++] = {i, ijk, value};
+    if (static_cast<std::uint8_t>(sample.value - 1u) < maxValue) contacts[found++] = {i, sample.ijkVoxel, sample.value};
   }
   return found;
-}
-
-std::uint8_t samplePoint(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                         const std::array<std::uint8_t, 3>& fieldShifts, std::uint32_t index) noexcept {
-  const glm::ivec3 ijk = voxelOf(transform.apply(shell.positionsLocal[index]));
-  return fieldValue(voxmap, ijk, fieldShifts[static_cast<std::size_t>(shell.features[index])]);
 }
 
 }  // namespace voxhap

@@ -9,6 +9,7 @@
 /// to a caller-sized buffer. Any number of threads may sample one voxmap at once.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include <glm/mat3x3.hpp>
@@ -38,6 +39,26 @@ struct VoxelTransform {
   glm::vec3 apply(const glm::vec3& pointLocal) const { return rotationScaled * pointLocal + offset; }
 };
 
+/// What one point test reads.
+struct PointSample {
+  glm::ivec3 ijkVoxel;        ///< voxel of the voxmap the point fell in
+  std::uint8_t value;         ///< the field value read there (0 … 2^bits − 1)
+  std::uint8_t surfaceValue;  ///< the surface field of the same voxel
+};
+
+/// Tests point `index` of `shell`; `fieldShifts` comes from fieldShiftsByFeature. Inline:
+/// the hot loops of samplePoints and of time-critical sampling are built from it.
+inline PointSample samplePointAt(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
+                                 const std::array<std::uint8_t, 3>& fieldShifts, std::uint32_t index) noexcept {
+  const glm::vec3 u = transform.apply(shell.positionsLocal[index]);
+  const glm::ivec3 ijk(static_cast<int>(std::floor(u.x)), static_cast<int>(std::floor(u.y)),
+                       static_cast<int>(std::floor(u.z)));
+  const std::uint8_t shift = fieldShifts[static_cast<std::size_t>(shell.features[index])];
+  const VoxelWord word = voxmap.word(ijk);
+  const std::uint32_t mask = voxmap.encoding().fieldMask();
+  return {ijk, static_cast<std::uint8_t>((word >> shift) & mask), static_cast<std::uint8_t>(word & mask)};
+}
+
 /// The field each feature label samples: geometrical awareness or the surface field.
 std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, const VoxelEncoding& encoding);
 
@@ -50,7 +71,9 @@ std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const 
                            std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept;
 
 /// The field value point `index` reads (0 … 2^bits − 1); for tests and proximity.
-std::uint8_t samplePoint(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                         const std::array<std::uint8_t, 3>& fieldShifts, std::uint32_t index) noexcept;
+inline std::uint8_t samplePoint(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
+                                const std::array<std::uint8_t, 3>& fieldShifts, std::uint32_t index) noexcept {
+  return samplePointAt(shell, voxmap, transform, fieldShifts, index).value;
+}
 
 }  // namespace voxhap

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "haptics/collide/point_sampler.h"
 #include "haptics/core/error.h"
 
 namespace voxhap {
@@ -61,6 +62,10 @@ SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxm
   model.gravityWorld = options.gravityWorld;
   model.staticVoxmap = std::move(staticVoxmap);
   model.deviceLimits = options.deviceLimits;
+  model.coherence = options.coherence;
+  if (!(model.coherence.capacityTests >= 0.0) || !std::isfinite(model.coherence.capacityTests)) {
+    throw Error("capacity must be a finite number of point tests, or 0 to measure it");
+  }
   model.objects = std::move(objects);
 
   for (MovingObjectModel& object : model.objects) {
@@ -96,6 +101,13 @@ SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxm
       if (i == kStaticEnvironment) continue;
       double& travel = model.objects[static_cast<std::size_t>(i)].maxTravelM;
       travel = std::min(travel, pair.voxmapObject == kStaticEnvironment ? half : 0.5 * half);
+    }
+  }
+  for (PairModel& pair : model.pairs) {
+    pair.fieldShifts = fieldShiftsByFeature(pair.params.geometricalAwareness, model.voxmapOf(pair).encoding());
+    pair.relativeTravelBoundM = model.objects[static_cast<std::size_t>(pair.shellObject)].maxTravelM;
+    if (pair.voxmapObject != kStaticEnvironment) {
+      pair.relativeTravelBoundM += model.objects[static_cast<std::size_t>(pair.voxmapObject)].maxTravelM;
     }
   }
   return model;

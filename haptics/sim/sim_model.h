@@ -7,6 +7,7 @@
 ///
 /// Built once at load time (allocates, may throw voxhap::Error); read by step().
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -41,8 +42,9 @@ struct MovingObjectModel {
   double shellRadiusM = 0.0;     ///< largest distance of a point from the centre of mass, m
   glm::dvec3 shellCentreLocal{0.0};  ///< centre of the pointshell's bounding sphere, m
   double shellBoundRadiusM = 0.0;    ///< radius of that sphere, m
-  /// Most any of its points may move in a frame, m: half the finest voxel of its pairs,
-  /// halved again when both objects of the pair move (infinite when it has no pair).
+  /// Upper bound of MaxTravel, the most any of its points may move in a frame, m: half
+  /// the finest voxel of its pairs, halved again when both objects of the pair move
+  /// (infinite when it has no pair). Eq. 2 scales it down when the capacity is short.
   double maxTravelM = 0.0;
   bool coupled = false;          ///< a handle drives it through a virtual coupling
   CouplingGains gains;           ///< of that coupling
@@ -53,6 +55,23 @@ struct PairModel {
   int shellObject = 0;                   ///< index of the moving object sampled as points
   int voxmapObject = kStaticEnvironment;  ///< index of the moving object sampled as voxels, or static
   ContactParams params;
+  std::array<std::uint8_t, 3> fieldShifts{};  ///< per point feature, from fieldShiftsByFeature
+  /// Most the two objects may move toward each other in a frame: the sum of their
+  /// maxTravelM, m.
+  double relativeTravelBoundM = 0.0;
+};
+
+/// Time-critical sampling (paper §5, DESIGN §4.5).
+struct CoherenceOptions {
+  /// Off: every point in range is tested every frame and MaxTravel is its upper bound
+  /// (brute force, for comparison).
+  bool enabled = true;
+  /// Point tests per frame (n_cap of Eq. 2); 0: measured online from the real cost of
+  /// each test and the frame's budget (the run is then not bit-reproducible).
+  double capacityTests = 0.0;
+  /// Share of the frame period that point tests and forces may take when the capacity is
+  /// measured online; the rest is for dynamics, devices and the network.
+  double testBudgetFraction = 0.5;
 };
 
 struct SimModel {
@@ -62,6 +81,7 @@ struct SimModel {
   std::vector<MovingObjectModel> objects;
   std::vector<PairModel> pairs;
   DeviceLimits deviceLimits;
+  CoherenceOptions coherence;
 
   const Voxmap& voxmapOf(const PairModel& pair) const {
     return pair.voxmapObject == kStaticEnvironment ? *staticVoxmap
@@ -77,6 +97,7 @@ struct SimOptions {
   bool geometricalAwareness = true;
   bool preContactDamping = false;  ///< see ContactParams
   DeviceLimits deviceLimits;
+  CoherenceOptions coherence;
 };
 
 /// Completes `objects` (rigid body, pointshell and voxmap set by the caller; `coupled`

@@ -1,10 +1,13 @@
 #include "haptics/sim/simulation.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "haptics/coherence/max_travel.h"
 #include "haptics/collide/tangent_plane_force.h"
 
 namespace voxhap {
@@ -52,7 +55,25 @@ SimState makeSimState(const SimModel& model) {
   }
   state.last.resize(model.objects.size());
   state.scratch.resize(largest);
+  state.due.resize(largest);
+  state.pairFrames.resize(model.pairs.size());
   if (!model.pairs.empty()) state.forceLayer = model.pairs.front().params.forceLayer;
+  if (!model.coherence.enabled) return state;
+  for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+    const PairModel& pair = model.pairs[p];
+    const MovingObjectModel& shellObject = model.objects[static_cast<std::size_t>(pair.shellObject)];
+    const Voxmap& voxmap = model.voxmapOf(pair);
+    PairCoherence& coherence = state.coherence.emplace_back(static_cast<std::uint32_t>(shellObject.shell.size()),
+                                                            state.forceLayer, voxmap.encoding().maxValue());
+    const Pose shellToVoxmap = compose(inverse(motionOf(model, state, pair.voxmapObject).poseWorld),
+                                       motionOf(model, state, pair.shellObject).poseWorld);
+    if (inRange(shellObject, shellToVoxmap, voxmap.grid())) {
+      coherence.sortAll(shellObject.shell, voxmap, VoxelTransform::make(shellToVoxmap, voxmap.grid()),
+                        pair.fieldShifts);
+    } else {
+      coherence.skipFrame(0.0);
+    }
+  }
   return state;
 }
 
@@ -62,6 +83,7 @@ bool setForceLayer(const SimModel& model, SimState& state, std::uint8_t value) n
     if (value > model.voxmapOf(pair).encoding().maxValue()) return false;
   }
   state.forceLayer = value;
+  for (PairCoherence& c : state.coherence) c.setForceLayer(value);
   return true;
 }
 
@@ -81,35 +103,97 @@ Pose objectPose(const SimModel& model, const SimState& state, std::size_t object
   return state.bodies[object].pose(model.objects[object].body);
 }
 
+namespace {
+
+/// Step 1: which pairs are in range, and Eq. 2 over them.
+void planFrame(const SimModel& model, SimState& state) {
+  const bool coherent = !state.coherence.empty();
+  double mandatory = 0.0;
+  double load = 0.0;
+  for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+    const PairModel& pair = model.pairs[p];
+    PairFrame& frame = state.pairFrames[p];
+    const Voxmap& voxmap = model.voxmapOf(pair);
+    const Pose shellToVoxmap = compose(inverse(motionOf(model, state, pair.voxmapObject).poseWorld),
+                                       motionOf(model, state, pair.shellObject).poseWorld);
+    frame.inRange = inRange(model.objects[static_cast<std::size_t>(pair.shellObject)], shellToVoxmap, voxmap.grid());
+    if (!frame.inRange) {
+      ++state.pairsSkipped;
+    } else {
+      frame.transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
+      if (coherent) {
+        const auto counts = state.coherence[p].queues().counts();
+        mandatory += mandatoryCount(counts);
+        load += queueLoad(counts) * pair.relativeTravelBoundM / voxmap.grid().voxelSizeM;
+      }
+    }
+  }
+  CoherenceFrame& plan = state.coherent;
+  plan = CoherenceFrame{};
+  if (!coherent) return;
+  plan.capacityTests = model.coherence.capacityTests > 0.0
+                           ? model.coherence.capacityTests
+                           : model.coherence.testBudgetFraction * model.dtS / state.testCostS;
+  const TravelBudget budget = travelScale(plan.capacityTests, mandatory, load);
+  plan.travelScale = budget.scale;
+  plan.deadlineMissed = budget.deadlineMissed;
+  plan.mandatory = static_cast<std::uint32_t>(mandatory);
+  state.missedDeadlines += budget.deadlineMissed ? 1 : 0;
+}
+
+/// Step 2 for one pair in range: its contacts, in state.scratch; returns how many, and
+/// adds its tests to `tested`.
+std::uint32_t findContacts(const SimModel& model, SimState& state, std::size_t p, std::uint32_t& tested) {
+  const PairModel& pair = model.pairs[p];
+  const Pointshell& shell = model.objects[static_cast<std::size_t>(pair.shellObject)].shell;
+  const Voxmap& voxmap = model.voxmapOf(pair);
+  ContactParams params = pair.params;
+  params.forceLayer = state.forceLayer;
+  const std::uint8_t sampledLayer = params.sampledLayer(voxmap.encoding().maxValue());
+  const VoxelTransform& transform = state.pairFrames[p].transform;
+  if (state.coherence.empty()) {
+    const auto points = static_cast<std::uint32_t>(shell.size());
+    tested += points;
+    return samplePoints(shell, voxmap, transform, pair.fieldShifts, sampledLayer, 0, points, state.scratch.data());
+  }
+  PairCoherence& coherence = state.coherence[p];
+  const double travelM = state.coherent.travelScale * pair.relativeTravelBoundM;
+  const std::uint32_t due = coherence.collectDue(travelM, voxmap.grid().voxelSizeM, state.due);
+  tested += due;
+  return coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
+                           std::span(state.due.data(), due), state.scratch.data());
+}
+
+}  // namespace
+
 void step(const SimModel& model, SimState& state, std::span<const HandleInput> handles) noexcept {
   const std::size_t n = model.objects.size();
   for (ObjectFrame& f : state.last) f = ObjectFrame{};
+  planFrame(model, state);
 
-  for (const PairModel& pair : model.pairs) {
-    const MovingObjectModel& shellObject = model.objects[static_cast<std::size_t>(pair.shellObject)];
-    const Voxmap& voxmap = model.voxmapOf(pair);
-    const BodyMotion shellMotion = motionOf(model, state, pair.shellObject);
-    const BodyMotion voxmapMotion = motionOf(model, state, pair.voxmapObject);
-    const Pose shellToVoxmap = compose(inverse(voxmapMotion.poseWorld), shellMotion.poseWorld);
-    if (!inRange(shellObject, shellToVoxmap, voxmap.grid())) {
-      ++state.pairsSkipped;
+  const auto started = std::chrono::steady_clock::now();
+  std::uint32_t testedInFrame = 0;
+  for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+    const PairModel& pair = model.pairs[p];
+    if (!state.pairFrames[p].inRange) {
+      if (!state.coherence.empty()) state.coherence[p].skipFrame(state.coherent.travelScale * pair.relativeTravelBoundM);
       continue;
     }
+    std::uint32_t tested = 0;
+    const std::uint32_t found = findContacts(model, state, p, tested);
+    testedInFrame += tested;
     ContactParams params = pair.params;
     params.forceLayer = state.forceLayer;
-    const VoxelTransform transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
-    const auto shifts = fieldShiftsByFeature(params.geometricalAwareness, voxmap.encoding());
-    const auto points = static_cast<std::uint32_t>(shellObject.shell.size());
-    const std::uint32_t found = samplePoints(shellObject.shell, voxmap, transform, shifts,
-                                             params.sampledLayer(voxmap.encoding().maxValue()), 0,
-                                             points, state.scratch.data());
-    const PairWrench w = tangentPlaneWrench(shellObject.shell, voxmap, params, shellMotion, voxmapMotion,
+    const MovingObjectModel& shellObject = model.objects[static_cast<std::size_t>(pair.shellObject)];
+    const PairWrench w = tangentPlaneWrench(shellObject.shell, model.voxmapOf(pair), params,
+                                            motionOf(model, state, pair.shellObject),
+                                            motionOf(model, state, pair.voxmapObject),
                                             std::span(state.scratch.data(), found));
     ObjectFrame& s = state.last[static_cast<std::size_t>(pair.shellObject)];
     s.contactForceWorld += w.forceOnShellWorld;
     s.contactTorqueWorld += w.torqueOnShellWorld;
     s.contacts += w.contactPoints;
-    s.tested += points;
+    s.tested += tested;
     s.maxDepthM = std::max(s.maxDepthM, w.maxDepthM);
     if (pair.voxmapObject != kStaticEnvironment) {
       ObjectFrame& v = state.last[static_cast<std::size_t>(pair.voxmapObject)];
@@ -118,6 +202,14 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
       v.contacts += w.contactPoints;
       v.maxDepthM = std::max(v.maxDepthM, w.maxDepthM);
     }
+  }
+  state.coherent.tested = testedInFrame;
+  // the capacity measured online: a smoothed cost per test, from frames with enough tests
+  // to outweigh the fixed cost of a pair
+  constexpr std::uint32_t kMeasuredTests = 1000;
+  if (testedInFrame >= kMeasuredTests) {
+    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - started;
+    state.testCostS = 0.9 * state.testCostS + 0.1 * elapsed.count() / testedInFrame;
   }
 
   for (std::size_t i = 0; i < n; ++i) {
@@ -136,7 +228,9 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
     }
     const RigidBodyState before = body;
     integrate(object.body, body, force, torque, model.dtS);
-    f.travelLimited = limitTravel(before, body, object.shellRadiusM, object.maxTravelM);
+    // an object without pairs has an infinite bound, which no scale makes finite
+    f.maxTravelM = std::isinf(object.maxTravelM) ? object.maxTravelM : state.coherent.travelScale * object.maxTravelM;
+    f.travelLimited = limitTravel(before, body, object.shellRadiusM, f.maxTravelM);
     state.travelLimitedFrames += f.travelLimited ? 1 : 0;
   }
   ++state.frame;

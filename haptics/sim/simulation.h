@@ -1,10 +1,13 @@
 #pragma once
-/// One 1 kHz frame of the haptic simulation (DESIGN §4.4, §4.7):
-///   1. each coupled object feels its handle through the virtual coupling;
-///   2. every pair in range samples its points and sums tangent-plane forces, applied
-///      equal and opposite (a pair whose bounding sphere misses the voxmap's grid costs
-///      no point test);
-///   3. each object is integrated as a free rigid body (gravity, coupling, contacts);
+/// One 1 kHz frame of the haptic simulation (DESIGN §4.4, §4.5, §4.7):
+///   1. Eq. 2 over the pairs in range gives this frame's MaxTravel from the capacity and
+///      the distance-to-contact queues (a pair whose bounding sphere misses the voxmap's
+///      grid costs no point test);
+///   2. every pair in range tests its mandatory points and its Eq. 3 quota of the others
+///      (or, with coherence off, every point) and sums tangent-plane forces, applied equal
+///      and opposite;
+///   3. each coupled object feels its handle through the virtual coupling; each object is
+///      integrated as a free rigid body (gravity, coupling, contacts);
 ///   4. its motion is limited to MaxTravel (at most half a voxel, paper §5), which the
 ///      user feels as viscosity;
 ///   5. the device of each coupled object gets the negated coupling wrench, clamped.
@@ -15,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "haptics/coherence/pair_coherence.h"
 #include "haptics/collide/point_sampler.h"
 #include "haptics/device/scripted_device.h"
 #include "haptics/sim/sim_model.h"
@@ -35,7 +39,23 @@ struct ObjectFrame {
   std::uint32_t contacts = 0;          ///< its points (or points against it) in the force layer
   std::uint32_t tested = 0;            ///< point tests in the pairs where it is the pointshell
   double maxDepthM = 0.0;              ///< deepest tangent-plane depth of its contacts, m
+  double maxTravelM = 0.0;             ///< MaxTravel this frame, m (infinite: no pair)
   bool travelLimited = false;          ///< MaxTravel held it back
+};
+
+/// Time-critical sampling in one frame, over all pairs.
+struct CoherenceFrame {
+  std::uint32_t tested = 0;       ///< point tests
+  std::uint32_t mandatory = 0;    ///< of which mandatory (queues 0 and 1)
+  double capacityTests = 0.0;     ///< n_cap used by Eq. 2
+  double travelScale = 1.0;       ///< every object's MaxTravel over its upper bound
+  bool deadlineMissed = false;    ///< more mandatory tests than capacity: nothing moved
+};
+
+/// Per pair, between the two passes of a frame.
+struct PairFrame {
+  VoxelTransform transform;
+  bool inRange = false;
 };
 
 /// Everything that changes per frame.
@@ -47,6 +67,14 @@ struct SimState {
   std::uint64_t pairsSkipped = 0;      ///< pair-frames out of range, in all
   std::uint64_t travelLimitedFrames = 0;  ///< object-frames that MaxTravel held back
   std::vector<PointContact> scratch;   ///< room for the largest pointshell's contacts
+  std::vector<PairFrame> pairFrames;   ///< per pair
+  /// Per pair, its queues; empty when coherence is off.
+  std::vector<PairCoherence> coherence;
+  std::vector<std::uint32_t> due;      ///< room for the largest pointshell's indices
+  CoherenceFrame coherent;             ///< the frame just stepped
+  std::uint64_t missedDeadlines = 0;   ///< frames with more mandatory tests than capacity
+  /// Online estimate of the time one point test (with its share of forces) takes, s.
+  double testCostS = 20e-9;
   /// The force layer in use (collision offsetting, paper §3.2), adjustable between frames
   /// with setForceLayer; starts at the model's.
   std::uint8_t forceLayer = kDefaultForceLayer;

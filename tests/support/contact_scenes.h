@@ -34,10 +34,18 @@ inline SceneObject plate() {
   });
 }
 
+/// Scene-model options for tests of contact physics: time-critical sampling on, with a
+/// fixed capacity (deterministic) so large that MaxTravel stays at its upper bound.
+inline SceneModelOptions ampleCapacityOptions() {
+  SceneModelOptions options;
+  options.sim.coherence.capacityTests = 1e9;
+  return options;
+}
+
 /// Model of `scene` with `moving` free (not coupled) at voxel size `voxelM`.
 inline SimModel freeModel(const Scene& scene, const std::vector<std::string>& moving, double voxelM,
                           const glm::dvec3& gravity, bool awareness = true) {
-  SceneModelOptions options;
+  SceneModelOptions options = ampleCapacityOptions();
   options.staticVoxelSizeM = voxelM;
   options.pointSpacingM = voxelM;
   options.sim.gravityWorld = gravity;

@@ -6,30 +6,38 @@ namespace voxhap {
 namespace {
 
 TEST(MaxTravel, FollowsEquationTwoAndItsBound) {
-  constexpr double s = 0.001;
-  // 100 mandatory, 1000 capacity: 900 tests for Σ n_i / i = 600/1 + 600/2 = 900 → s
-  const std::uint32_t counts[] = {100, 600, 600};
-  EXPECT_DOUBLE_EQ(maxTravel(1000, counts, s, 10 * s).maxTravelM, s);
-  EXPECT_DOUBLE_EQ(maxTravel(1000, counts, s, 0.5 * s).maxTravelM, 0.5 * s);
-  const TravelBudget stuck = maxTravel(100, counts, s, 0.5 * s);
-  EXPECT_EQ(stuck.maxTravelM, 0.0);
+  // 100 mandatory; 900 spare tests for a load of 600/1 + 600/2 = 900 at full travel: scale 1
+  const std::uint32_t counts[] = {60, 40, 600, 600};
+  EXPECT_EQ(mandatoryCount(counts), 100u);
+  EXPECT_DOUBLE_EQ(queueLoad(counts), 900.0);
+  EXPECT_DOUBLE_EQ(travelScale(1000, 100, 900).scale, 1.0);
+  EXPECT_DOUBLE_EQ(travelScale(1000, 100, 1800).scale, 0.5);
+  EXPECT_DOUBLE_EQ(travelScale(1000, 100, 90).scale, 1.0);  // never beyond the bound
+  const TravelBudget stuck = travelScale(100, 100, 900);
+  EXPECT_EQ(stuck.scale, 0.0);
   EXPECT_TRUE(stuck.deadlineMissed);
-  const std::uint32_t nothingNear[] = {0, 0, 0};
-  EXPECT_DOUBLE_EQ(maxTravel(1000, nothingNear, s, 0.5 * s).maxTravelM, 0.5 * s);
+  EXPECT_DOUBLE_EQ(travelScale(1000, 0, 0).scale, 1.0);  // nothing near
 }
 
 TEST(MaxTravel, QuotasTestEveryQueueOftenEnoughAndFitTheCapacity) {
   constexpr double s = 0.001;
-  const std::uint32_t counts[] = {50, 300, 900, 2000, 10000};
+  const std::uint32_t counts[] = {50, 300, 900, 2000, 10000, 7};
   const double capacity = 2000;
-  const TravelBudget budget = maxTravel(capacity, counts, s, 0.5 * s);
+  const double boundM = 0.5 * s;
+  const TravelBudget budget = travelScale(capacity, mandatoryCount(counts), queueLoad(counts) * boundM / s);
   ASSERT_FALSE(budget.deadlineMissed);
-  std::uint32_t tests = counts[0];
-  for (int i = 1; i < 5; ++i) {
-    const std::uint32_t m = queueQuota(counts[i], i, budget.maxTravelM, s);
-    // a point of queue i is due again after n_i / m_i frames, in which it moves at most
-    // that many MaxTravels: never as far as its i voxels
-    EXPECT_LE(static_cast<double>(counts[i]) / m * budget.maxTravelM, i * s * (1 + 1e-12));
+  ASSERT_LT(budget.scale, 1.0);
+  const double travelM = budget.scale * boundM;
+  double tests = 0;
+  for (int i = 0; i < 6; ++i) {
+    const std::uint32_t m = queueQuota(counts[i], i, travelM, s);
+    if (i < kMandatoryQueues) {
+      EXPECT_EQ(m, counts[i]);
+    } else {
+      // a point of queue i is due again after n_i / m_i frames, in which it moves at most
+      // that many MaxTravels: never as far as the i − 1 voxels it must cross
+      EXPECT_LE(static_cast<double>(counts[i]) / m * travelM, (i - 1) * s * (1 + 1e-12));
+    }
     tests += m;
   }
   EXPECT_LE(tests, capacity + 4);  // each quota rounds up by less than one
@@ -43,6 +51,8 @@ TEST(MaxTravel, QueuesByValueAroundTheForceLayer) {
   EXPECT_EQ(queueForValue(5, 4, 10), 1);
   EXPECT_EQ(queueForValue(10, 4, 10), 6);
   EXPECT_EQ(queueForValue(0, 4, 10), 7);
+  // far lies beyond distance 8: six whole voxels (distances 8 … 3) before distance 2
+  EXPECT_EQ(voxelsToContact(queueForValue(0, 4, 10)), 6);
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ TEST(FrameAllocation, SteppingTwoCoupledObjectsInContactAllocatesNothing) {
       appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0111 * i, 0.0, 0.0056)), glm::dvec3(0.005));
     }));
   }
-  SceneModelOptions options;
+  SceneModelOptions options = test::ampleCapacityOptions();
   options.staticVoxelSizeM = 0.0005;
   options.pointSpacingM = 0.0005;
   options.sim.gravityWorld = glm::dvec3(0.0, 0.0, -9.81);

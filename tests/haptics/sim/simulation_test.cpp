@@ -84,7 +84,7 @@ TEST(Simulation, PointsFromAFreeLayerHoldTheSphereThatManyVoxelsHigher) {
   const Scene scene = sphereOverPlate(0.01, 0.003);
   double gap[2];
   for (int layer : {0, 2}) {
-    SceneModelOptions options;
+    SceneModelOptions options = test::ampleCapacityOptions();
     options.staticVoxelSizeM = kVoxel;
     options.pointSpacingM = kVoxel;
     options.pointFreeLayer = layer;
@@ -102,7 +102,7 @@ TEST(Simulation, PreContactDampingSlowsTheApproachBeforeContact) {
   const Scene scene = sphereOverPlate(0.01, 0.004);
   double speedAtContact[2];
   for (int damped = 0; damped < 2; ++damped) {
-    SceneModelOptions options;
+    SceneModelOptions options = test::ampleCapacityOptions();
     options.staticVoxelSizeM = kVoxel;
     options.pointSpacingM = kVoxel;
     options.sim.preContactDamping = damped == 1;
@@ -191,7 +191,7 @@ TEST(Simulation, CrossedRodsPushApartAlongTheCommonNormal) {
 
 TEST(Simulation, BallStaysSeatedInItsSocket) {
   const Scene scene = makeBallAndSocket();
-  SceneModelOptions options;
+  SceneModelOptions options = test::ampleCapacityOptions();
   options.staticVoxelSizeM = 0.00035;
   options.pointSpacingM = 0.00035;
   options.pointDisplacementM = -0.5 * 0.00035;
@@ -217,7 +217,7 @@ TEST(Simulation, PegSlidesIntoItsHoleWithoutJamming) {
   scene.objects.push_back(test::meshObject("peg", ObjectRole::Dynamic, [](TriangleMesh& m) {
     appendCylinder(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.0085)), 0.003, 0.010, 64);
   }));
-  SceneModelOptions options;
+  SceneModelOptions options = test::ampleCapacityOptions();
   options.staticVoxelSizeM = voxel;
   options.pointSpacingM = voxel;
   const SimModel model = buildSceneModel(scene, {"peg"}, options);
@@ -308,7 +308,7 @@ TEST(Simulation, SameInputsGiveTheSameBits) {
 
 TEST(SceneModel, UnknownOrRepeatedObjectIsAnErrorNamingIt) {
   const Scene scene = boxOverPlate(0.001);
-  SceneModelOptions options;
+  SceneModelOptions options = test::ampleCapacityOptions();
   options.staticVoxelSizeM = kVoxel;
   options.pointSpacingM = kVoxel;
   try {

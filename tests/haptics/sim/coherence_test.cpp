@@ -1,0 +1,170 @@
+// Time-critical sampling in the frame (paper §5, DESIGN §4.5): checked against brute
+// force, which tests every point every frame.
+#include <cstring>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "haptics/device/scripted_device.h"
+#include "support/contact_scenes.h"
+
+namespace voxhap {
+namespace {
+
+constexpr double kVoxel = 0.0005;  // m
+constexpr double kRadius = 0.01;   // m
+
+Scene sphereOverPlate() {
+  Scene scene;
+  scene.objects.push_back(test::plate());
+  scene.objects.push_back(test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, kRadius + 0.002)), kRadius, 4);
+  }));
+  return scene;
+}
+
+SimModel coupledModel(const Scene& scene, double capacityTests) {
+  SceneModelOptions options;
+  options.staticVoxelSizeM = kVoxel;
+  options.pointSpacingM = kVoxel;
+  options.sim.coherence.capacityTests = capacityTests;
+  return buildSceneModel(scene, {"ball"}, options);
+}
+
+/// Points of object 0 at or inside the force layer where it stands now, by testing all.
+std::uint32_t bruteForceContacts(const SimModel& model, const SimState& state) {
+  const PairModel& pair = model.pairs.front();
+  const Voxmap& voxmap = model.voxmapOf(pair);
+  const Pointshell& shell = model.objects[0].shell;
+  const VoxelTransform transform = VoxelTransform::make(objectPose(model, state, 0), voxmap.grid());
+  std::vector<PointContact> contacts(shell.size());
+  return samplePoints(shell, voxmap, transform, pair.fieldShifts, state.forceLayer, 0,
+                      static_cast<std::uint32_t>(shell.size()), contacts.data());
+}
+
+/// A handle that jumps between random poses every `periodS`: through the plate and out,
+/// turning, faster than MaxTravel lets the ball follow.
+MotionScript randomMotion(unsigned seed, double periodS, double durationS) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<MotionKeyframe> keys;
+  for (double t = 0.0; t <= durationS; t += periodS) {
+    const glm::dvec3 shift(0.006 * unit(random), 0.006 * unit(random), -0.0015 + 0.003 * unit(random));
+    const glm::dquat turn = quatFromRotationVector(1.5 * glm::dvec3(unit(random), unit(random), unit(random)));
+    // turned about the ball's centre, which goes up to 2.5 mm into the plate
+    const glm::dvec3 centre(0.0, 0.0, kRadius + 0.002);
+    keys.push_back({t, Pose{centre - turn * centre + shift, turn}});
+  }
+  return MotionScript(std::move(keys), "random motion");
+}
+
+TEST(Coherence, NoPointReachesTheForceLayerUntestedUnderRandomMotion) {
+  const Scene scene = sphereOverPlate();
+  const SimModel bounded = coupledModel(scene, 0.0);
+  const auto points = static_cast<double>(bounded.objects[0].shell.size());
+  // a tenth of the points per frame: quotas and MaxTravel both bind
+  const SimModel model = coupledModel(scene, 0.1 * points);
+  std::uint64_t scaledFrames = 0;
+  std::uint64_t contactFrames = 0;
+  std::uint64_t missedFrames = 0;
+  double testedShare = 0.0;
+  constexpr int kFrames = 3000;
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    ScriptedDevice device(randomMotion(seed, 0.05, 3.0));
+    HapticDevice* devices[] = {&device};
+    HandleInput handles[1];
+    SimState state = makeSimState(model);
+    for (int frame = 0; frame < kFrames; ++frame) {
+      const std::uint32_t expected = bruteForceContacts(model, state);
+      stepWithDevices(model, state, devices, handles);
+      ASSERT_EQ(state.last[0].contacts, expected) << "seed " << seed << ", frame " << frame;
+      missedFrames += state.coherent.deadlineMissed ? 1 : 0;
+      scaledFrames += state.coherent.travelScale < 1.0 ? 1 : 0;
+      contactFrames += expected > 0 ? 1 : 0;
+      testedShare += state.coherent.tested / points;
+    }
+  }
+  // the run exercised what it claims to: contact, a short capacity, partial testing
+  EXPECT_GT(contactFrames, 2000u);
+  EXPECT_GT(scaledFrames, 1000u);
+  EXPECT_LT(testedShare / (3 * kFrames), 0.2);
+  EXPECT_EQ(missedFrames, 0u);
+}
+
+TEST(Coherence, MaxTravelHoldsEveryPointOfTheObject) {
+  const Scene scene = sphereOverPlate();
+  const SimModel model = coupledModel(scene, 200.0);
+  ScriptedDevice device(randomMotion(4, 0.02, 1.0));
+  HapticDevice* devices[] = {&device};
+  HandleInput handles[1];
+  SimState state = makeSimState(model);
+  const Pointshell& shell = model.objects[0].shell;
+  for (int frame = 0; frame < 1000; ++frame) {
+    const Pose before = objectPose(model, state, 0);
+    stepWithDevices(model, state, devices, handles);
+    const Pose after = objectPose(model, state, 0);
+    double farthestM = 0.0;
+    for (const glm::vec3& p : shell.positionsLocal) {
+      farthestM = std::max(farthestM, glm::length(apply(after, glm::dvec3(p)) - apply(before, glm::dvec3(p))));
+    }
+    ASSERT_LE(farthestM, state.last[0].maxTravelM * (1.0 + 1e-9) + 1e-12) << "frame " << frame;
+    ASSERT_LE(state.last[0].maxTravelM, 0.5 * kVoxel);
+  }
+  EXPECT_GT(state.travelLimitedFrames, 100u);
+}
+
+TEST(Coherence, MoreMandatoryPointsThanCapacityStopsTheObjectAndCountsTheMiss) {
+  Scene scene = sphereOverPlate();
+  // start the ball resting in the force layer
+  scene.objects[1] = test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, kRadius)), kRadius, 4);
+  });
+  const SimModel model = coupledModel(scene, 10.0);
+  SimState state = makeSimState(model);
+  HandleInput handles[1] = {{Pose{}, {}}};
+  const Pose start = objectPose(model, state, 0);
+  for (int frame = 0; frame < 5; ++frame) step(model, state, handles);
+  EXPECT_TRUE(state.coherent.deadlineMissed);
+  EXPECT_EQ(state.missedDeadlines, 5u);
+  EXPECT_EQ(state.last[0].maxTravelM, 0.0);
+  EXPECT_EQ(objectPose(model, state, 0).position, start.position);
+  // every mandatory point was still tested
+  EXPECT_EQ(state.coherent.tested, state.coherent.mandatory);
+  EXPECT_GT(state.last[0].contacts, 0u);
+}
+
+TEST(Coherence, AnObjectOutOfRangeCostsNoPointTests) {
+  Scene scene = sphereOverPlate();
+  scene.objects[1] = test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.2)), kRadius, 4);
+  });
+  const SimModel model = coupledModel(scene, 1000.0);
+  SimState state = makeSimState(model);
+  HandleInput handles[1] = {{Pose{}, {}}};
+  for (int frame = 0; frame < 10; ++frame) {
+    step(model, state, handles);
+    EXPECT_EQ(state.coherent.tested, 0u);
+    EXPECT_EQ(state.last[0].maxTravelM, 0.5 * kVoxel);
+  }
+  EXPECT_EQ(state.pairsSkipped, 10u);
+}
+
+TEST(Coherence, SameInputsGiveTheSameBitsWithAFixedCapacity) {
+  const Scene scene = sphereOverPlate();
+  const SimModel model = coupledModel(scene, 300.0);
+  RigidBodyState end[2];
+  for (RigidBodyState& result : end) {
+    ScriptedDevice device(randomMotion(5, 0.05, 0.5));
+    HapticDevice* devices[] = {&device};
+    HandleInput handles[1];
+    SimState state = makeSimState(model);
+    for (int frame = 0; frame < 500; ++frame) stepWithDevices(model, state, devices, handles);
+    result = state.bodies[0];
+  }
+  EXPECT_EQ(std::memcmp(&end[0], &end[1], sizeof(RigidBodyState)), 0);
+}
+
+// temporary debug: appended to coherence_test
+}  // namespace
+}  // namespace voxhap
