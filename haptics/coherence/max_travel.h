@@ -18,6 +18,16 @@
 ///
 /// When n_mand ≥ n_cap nothing may move (MaxTravel = 0) and the deadline is missed.
 ///
+/// A point's queue comes from the field it samples, as in the paper. Under geometrical
+/// awareness a surface point samples the vertex field, which is far across the middle of
+/// a face yet interior (a contact) a voxel past it: such a point can pass from far to
+/// contact between two of its tests, once its object's face has sunk through the other's
+/// surface voxels. Awareness assumes that this does not happen (vertex and edge contacts
+/// keep the surfaces apart, paper §4); when it does, the point's next test finds it, within
+/// the travel its queue allowed. Bounding every queue by the surface field as well would
+/// make every point within a voxel of the other surface mandatory: half the seated ball
+/// of the rotation benchmark. Without awareness the guarantee is exact.
+///
 /// Several pairs share one capacity: every moving object's MaxTravel is its upper bound
 /// times one scale, so that a pair's relative travel per frame is the scale times the sum
 /// of its objects' bounds; travelScale() solves Eq. 2 for that scale.
@@ -35,20 +45,6 @@ namespace voxhap {
 inline int queueForValue(std::uint8_t value, std::uint8_t forceLayer, std::uint8_t maxValue) noexcept {
   if (value == 0) return maxValue + 1 - forceLayer;
   return value <= forceLayer ? 0 : value - forceLayer;
-}
-
-/// The queue of a point that read `value` in the field of its feature and `surfaceValue`
-/// in the surface field of the same voxel. Under geometrical awareness a surface point
-/// reads the vertex field, which is far across the middle of a face, yet turns interior
-/// (a contact) a voxel past the face: far from a vertex is not far from contact. So the
-/// surface field bounds the queue too: from surface value v the point crosses v − 3 whole
-/// voxels before it reaches a surface voxel, where the other fields may already read
-/// interior; that is queue v − 2 (one queue further out than voxelsToContact counts).
-inline int queueForSample(std::uint8_t value, std::uint8_t surfaceValue, std::uint8_t forceLayer,
-                          std::uint8_t maxValue) noexcept {
-  const int byFeature = queueForValue(value, forceLayer, maxValue);
-  const int bySurface = surfaceValue == 0 ? maxValue - 1 : (surfaceValue <= 3 ? 1 : surfaceValue - 2);
-  return byFeature < bySurface ? byFeature : bySurface;
 }
 
 /// Number of queues for a force layer and largest field value: 0 … maxValue + 1 − forceLayer.

@@ -22,7 +22,7 @@ void PairCoherence::sortAll(const Pointshell& shell, const Voxmap& voxmap, const
   queues_.assignAll(1);
   for (std::uint32_t point = 0; point < queues_.pointCount(); ++point) {
     const PointSample sample = samplePointAt(shell, voxmap, transform, fieldShifts, point);
-    queues_.move(point, 1, queueForSample(sample.value, sample.surfaceValue, forceLayer_, maxValue_));
+    queues_.move(point, 1, queueForValue(sample.value, forceLayer_, maxValue_));
   }
   std::fill(owedIndices_.begin(), owedIndices_.end(), 0.0);
   lastTravelM_ = 0.0;
@@ -84,7 +84,7 @@ std::uint32_t PairCoherence::testDue(const Pointshell& shell, const Voxmap& voxm
       if (static_cast<std::uint8_t>(sample.value - 1u) < sampledLayer) {
         contacts[found++] = {point, sample.ijkVoxel, sample.value};
       }
-      queues_.move(point, q, queueForSample(sample.value, sample.surfaceValue, forceLayer_, maxValue_));
+      queues_.move(point, q, queueForValue(sample.value, forceLayer_, maxValue_));
     }
   }
   return found;

@@ -41,9 +41,8 @@ struct VoxelTransform {
 
 /// What one point test reads.
 struct PointSample {
-  glm::ivec3 ijkVoxel;        ///< voxel of the voxmap the point fell in
-  std::uint8_t value;         ///< the field value read there (0 … 2^bits − 1)
-  std::uint8_t surfaceValue;  ///< the surface field of the same voxel
+  glm::ivec3 ijkVoxel;  ///< voxel of the voxmap the point fell in
+  std::uint8_t value;   ///< the field value read there (0 … 2^bits − 1)
 };
 
 /// Tests point `index` of `shell`; `fieldShifts` comes from fieldShiftsByFeature. Inline:
@@ -54,9 +53,7 @@ inline PointSample samplePointAt(const Pointshell& shell, const Voxmap& voxmap, 
   const glm::ivec3 ijk(static_cast<int>(std::floor(u.x)), static_cast<int>(std::floor(u.y)),
                        static_cast<int>(std::floor(u.z)));
   const std::uint8_t shift = fieldShifts[static_cast<std::size_t>(shell.features[index])];
-  const VoxelWord word = voxmap.word(ijk);
-  const std::uint32_t mask = voxmap.encoding().fieldMask();
-  return {ijk, static_cast<std::uint8_t>((word >> shift) & mask), static_cast<std::uint8_t>(word & mask)};
+  return {ijk, static_cast<std::uint8_t>((voxmap.word(ijk) >> shift) & voxmap.encoding().fieldMask())};
 }
 
 /// The field each feature label samples: geometrical awareness or the surface field.

@@ -24,8 +24,9 @@ Scene sphereOverPlate() {
   return scene;
 }
 
-SimModel coupledModel(const Scene& scene, double capacityTests) {
+SimModel coupledModel(const Scene& scene, double capacityTests, bool awareness = true) {
   SceneModelOptions options;
+  options.sim.geometricalAwareness = awareness;
   options.staticVoxelSizeM = kVoxel;
   options.pointSpacingM = kVoxel;
   options.sim.coherence.capacityTests = capacityTests;
@@ -33,14 +34,15 @@ SimModel coupledModel(const Scene& scene, double capacityTests) {
 }
 
 /// Points of object 0 at or inside the force layer where it stands now, by testing all.
-std::uint32_t bruteForceContacts(const SimModel& model, const SimState& state) {
+std::vector<PointContact> bruteForceContacts(const SimModel& model, const SimState& state) {
   const PairModel& pair = model.pairs.front();
   const Voxmap& voxmap = model.voxmapOf(pair);
   const Pointshell& shell = model.objects[0].shell;
   const VoxelTransform transform = VoxelTransform::make(objectPose(model, state, 0), voxmap.grid());
   std::vector<PointContact> contacts(shell.size());
-  return samplePoints(shell, voxmap, transform, pair.fieldShifts, state.forceLayer, 0,
-                      static_cast<std::uint32_t>(shell.size()), contacts.data());
+  contacts.resize(samplePoints(shell, voxmap, transform, pair.fieldShifts, state.forceLayer, 0,
+                               static_cast<std::uint32_t>(shell.size()), contacts.data()));
+  return contacts;
 }
 
 /// A handle that jumps between random poses every `periodS`: through the plate and out,
@@ -59,15 +61,24 @@ MotionScript randomMotion(unsigned seed, double periodS, double durationS) {
   return MotionScript(std::move(keys), "random motion");
 }
 
-TEST(Coherence, NoPointReachesTheForceLayerUntestedUnderRandomMotion) {
+class CoherenceUnderRandomMotion : public testing::TestWithParam<bool> {};
+
+// A point brute force finds in contact was tested in that frame: it is in the contact queue
+// after the frame (untested points keep their queue, and the contact queue is tested every
+// frame). With geometrical awareness a surface or edge point may pass from far to interior
+// through the plate's face between two tests (max_travel.h): those are counted apart and
+// must be caught by their next test; every other contact must be tested in its frame.
+TEST_P(CoherenceUnderRandomMotion, NoPointReachesTheForceLayerUntested) {
+  const bool awareness = GetParam();
   const Scene scene = sphereOverPlate();
-  const SimModel bounded = coupledModel(scene, 0.0);
+  const SimModel bounded = coupledModel(scene, 0.0, awareness);
   const auto points = static_cast<double>(bounded.objects[0].shell.size());
-  // a tenth of the points per frame: quotas and MaxTravel both bind
-  const SimModel model = coupledModel(scene, 0.1 * points);
+  // capacity short enough that quotas and MaxTravel both bind (awareness tests fewer)
+  const SimModel model = coupledModel(scene, (awareness ? 0.03 : 0.1) * points, awareness);
   std::uint64_t scaledFrames = 0;
   std::uint64_t contactFrames = 0;
   std::uint64_t missedFrames = 0;
+  std::uint64_t lateThroughAFace = 0;
   double testedShare = 0.0;
   constexpr int kFrames = 3000;
   for (const unsigned seed : {1u, 2u, 3u}) {
@@ -75,22 +86,42 @@ TEST(Coherence, NoPointReachesTheForceLayerUntestedUnderRandomMotion) {
     HapticDevice* devices[] = {&device};
     HandleInput handles[1];
     SimState state = makeSimState(model);
+    // per point, the travel allowed since it was first seen late (−1: not late)
+    std::vector<double> lateTravelM(model.objects[0].shell.size(), -1.0);
     for (int frame = 0; frame < kFrames; ++frame) {
-      const std::uint32_t expected = bruteForceContacts(model, state);
+      const std::vector<PointContact> expected = bruteForceContacts(model, state);
       stepWithDevices(model, state, devices, handles);
-      ASSERT_EQ(state.last[0].contacts, expected) << "seed " << seed << ", frame " << frame;
+      const PointQueues& queues = state.coherence.front().queues();
+      for (const PointContact& c : expected) {
+        if (queues.queueOf(c.point) == 0) {
+          lateTravelM[c.point] = -1.0;
+          continue;
+        }
+        const bool throughAFace = awareness && c.value == kValueInterior &&
+                                  model.objects[0].shell.features[c.point] != PointFeature::Vertex;
+        ASSERT_TRUE(throughAFace) << "seed " << seed << ", frame " << frame << ": point " << c.point
+                                  << " reached value " << int(c.value) << " untested";
+        ++lateThroughAFace;
+        // the far queue, the furthest out, retests within 6 voxels of travel
+        lateTravelM[c.point] = std::max(0.0, lateTravelM[c.point]) + state.last[0].maxTravelM;
+        ASSERT_LE(lateTravelM[c.point], 6.5 * kVoxel) << "seed " << seed << ", frame " << frame;
+      }
       missedFrames += state.coherent.deadlineMissed ? 1 : 0;
       scaledFrames += state.coherent.travelScale < 1.0 ? 1 : 0;
-      contactFrames += expected > 0 ? 1 : 0;
+      contactFrames += expected.empty() ? 0 : 1;
       testedShare += state.coherent.tested / points;
     }
   }
+  RecordProperty("late_through_a_face", static_cast<int>(lateThroughAFace));
   // the run exercised what it claims to: contact, a short capacity, partial testing
   EXPECT_GT(contactFrames, 2000u);
   EXPECT_GT(scaledFrames, 1000u);
-  EXPECT_LT(testedShare / (3 * kFrames), 0.2);
+  EXPECT_LT(testedShare / (3 * kFrames), 0.25);
   EXPECT_EQ(missedFrames, 0u);
 }
+
+INSTANTIATE_TEST_SUITE_P(Awareness, CoherenceUnderRandomMotion, testing::Bool(),
+                         [](const testing::TestParamInfo<bool>& info) { return info.param ? "On" : "Off"; });
 
 TEST(Coherence, MaxTravelHoldsEveryPointOfTheObject) {
   const Scene scene = sphereOverPlate();
