@@ -1,5 +1,6 @@
 #include "app/cli/command.h"
 
+#include <cctype>
 #include <new>
 #include <sstream>
 
@@ -24,12 +25,16 @@ std::string helpText(const Command& command, const std::string& path) {
   s << command.summary << "\n";
   if (!command.description.empty()) s << "\n" << command.description << "\n";
   if (!command.subcommands.empty()) {
-    s << "\nCommands:\n";
+    std::string heading = command.subcommandNoun + "s";
+    heading[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(heading[0])));
+    s << "\n" << heading << ":\n";
     for (const Command& sub : command.subcommands) {
       s << "  " << sub.name << std::string(sub.name.size() < 12 ? 12 - sub.name.size() : 1, ' ')
         << sub.summary << "\n";
     }
-    s << "\nRun '" << path << " COMMAND --help' for the options of one command.\n";
+    std::string placeholder = command.subcommandNoun == "command" ? "COMMAND" : "NAME";
+    s << "\nRun '" << path << " " << placeholder << " --help' for the options of one " << command.subcommandNoun
+      << ".\n";
   }
   std::vector<OptionSpec> options = command.options;
   options.insert(options.end(), commonOptions().begin(), commonOptions().end());
@@ -56,7 +61,10 @@ int dispatch(const Command& command, const std::string& path, std::vector<std::s
         return dispatch(sub, path + " " + sub.name, std::move(args), out, console);
       }
     }
-    throw UsageError("'" + path + "' has no command '" + args[0] + "'");
+    std::string names;
+    for (const Command& sub : command.subcommands) names += (names.empty() ? "" : ", ") + sub.name;
+    throw UsageError("'" + path + "' has no " + command.subcommandNoun + " '" + args[0] + "' (" +
+                     command.subcommandNoun + "s: " + names + ")");
   }
   std::vector<OptionSpec> options = command.options;
   options.insert(options.end(), commonOptions().begin(), commonOptions().end());
@@ -88,8 +96,9 @@ Command voxhapCommands() {
       "ball-and-socket, peg-in-hole, landing-gear (generated on first use and cached).\n\n"
       "Examples:\n"
       "  voxhap demo\n"
+      "  voxhap bench table1\n"
       "  voxhap scene info assets/ball-and-socket.glb --json";
-  root.subcommands = {sceneCommand(), voxelizeCommand(), simulateCommand(), demoCommand()};
+  root.subcommands = {sceneCommand(), voxelizeCommand(), simulateCommand(), benchCommand(), demoCommand()};
   return root;
 }
 

@@ -33,6 +33,7 @@ struct Command {
   std::vector<OptionSpec> options;
   std::function<int(const CommandContext&)> run;  ///< empty for a group of subcommands
   std::vector<Command> subcommands;
+  std::string subcommandNoun = "command";  ///< what a subcommand is called in help and errors
 };
 
 /// The whole command tree of `voxhap`.

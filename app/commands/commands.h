@@ -11,6 +11,8 @@ Command sceneCommand();
 Command simulateCommand();
 /// `voxhap voxelize`: one object's or the static environment's voxmap, Table 1 figures.
 Command voxelizeCommand();
+/// `voxhap bench NAME`: the paper's measurements (Table 1, …) as tables, JSON, CSV, SVG.
+Command benchCommand();
 /// `voxhap demo`: the main job on the built-in default scene.
 Command demoCommand();
 

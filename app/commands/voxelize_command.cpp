@@ -1,58 +1,24 @@
 #include <sys/resource.h>
 
-#include <cmath>
-#include <iomanip>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
 
 #include "app/cache_options.h"
 #include "app/cli/command.h"
+#include "app/cli/number_format.h"
 #include "app/commands/commands.h"
 #include "app/scene_source.h"
 #include "app/voxel_slice.h"
+#include "app/voxelize_objects.h"
 #include "haptics/core/error.h"
 #include "haptics/voxel/voxel_cache.h"
 
 namespace voxhap::cli {
 namespace {
 
-/// Name under which the merged static objects are reported.
-constexpr const char* kStaticName = "static";
-
 std::uint64_t peakRssBytes() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;  // Linux reports KiB
-}
-
-std::string objectList(const Scene& scene) {
-  std::string list;
-  for (const SceneObject& o : scene.objects) {
-    list += (list.empty() ? "" : ", ") + o.name + " (" + roleName(o.settings.role) + ")";
-  }
-  return list;
-}
-
-/// The objects to voxelize as one: the named one, or every static object.
-std::vector<const SceneObject*> chooseObjects(const Scene& scene, const std::optional<std::string>& name) {
-  std::vector<const SceneObject*> objects;
-  if (name) {
-    const SceneObject* object = scene.find(*name);
-    if (!object) {
-      throw Error(scene.sourceName + ": no object named '" + *name + "' (objects: " + objectList(scene) + ")");
-    }
-    objects.push_back(object);
-    return objects;
-  }
-  for (const SceneObject& o : scene.objects) {
-    if (o.settings.role == ObjectRole::Static) objects.push_back(&o);
-  }
-  if (objects.empty()) {
-    throw Error(scene.sourceName + ": no static objects; pick one with --object (objects: " + objectList(scene) +
-                ")");
-  }
-  return objects;
 }
 
 VoxelizeOptions voxelizeOptionsOf(const ParsedArgs& args) {
@@ -67,22 +33,6 @@ VoxelizeOptions voxelizeOptionsOf(const ParsedArgs& args) {
   options.encoding = VoxelEncoding::forBits(static_cast<int>(bits));
   options.buildFeatureFields = !args.has("no-awareness");
   return options;
-}
-
-std::string withCommas(std::uint64_t n) {
-  const std::string digits = std::to_string(n);
-  std::string out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out.push_back(',');
-    out.push_back(digits[i]);
-  }
-  return out;
-}
-
-std::string fixed(double value, int decimals) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(decimals) << value;
-  return s.str();
 }
 
 nlohmann::ordered_json resultJson(const std::string& objectName, const VoxelizeOptions& options,
@@ -143,19 +93,12 @@ int runVoxelize(const CommandContext& c) {
   const std::uint64_t seed = c.args.value("seed") ? parseUnsigned(*c.args.value("seed"), "seed") : kDefaultSeed;
   const Scene scene = loadScene(c.args.positionals[0], seed, c.console);
   const std::optional<std::string> objectName = c.args.value("object");
-  const std::vector<const SceneObject*> objects = chooseObjects(scene, objectName);
-  const std::string shownName = objectName.value_or(kStaticName);
+  const std::vector<const SceneObject*> objects = objectsToVoxelize(scene, objectName);
+  const std::string shownName = objectName.value_or(kStaticObjectsName);
 
   const CachedVoxelization result =
       voxelizeCached(objects, options, cache, c.console.progress("voxelizing " + shownName));
-  for (const std::string& warning : result.warnings) c.console.warning(warning);
-  const VoxelizeStats& stats = result.voxelized.stats;
-  if (stats.voteDisagreements > 0 && stats.firstDisagreementLocal) {
-    const glm::dvec3 p = *stats.firstDisagreementLocal;
-    c.console.warning(shownName + ": inside/outside votes disagree at " + withCommas(stats.voteDisagreements) +
-                      " voxels (holes in the mesh?), e.g. near (" + fixed(p.x, 4) + ", " + fixed(p.y, 4) + ", " +
-                      fixed(p.z, 4) + ") m");
-  }
+  warnAboutVoxelization(c.console, shownName, result);
   c.console.note(result.cacheHit ? "loaded " + result.cacheFile.string()
                                  : "voxelized in " + fixed(result.voxelizeS, 2) + " s, cached in " +
                                        fixed(result.saveS, 2) + " s");

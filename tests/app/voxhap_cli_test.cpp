@@ -23,13 +23,15 @@ TEST_F(VoxhapCli, HelpListsOnlyWorkingCommandsAndExitsZero) {
   EXPECT_NE(r.out.find("scene"), std::string::npos);
   EXPECT_NE(r.out.find("demo"), std::string::npos);
   EXPECT_NE(r.out.find("simulate"), std::string::npos);
-  EXPECT_EQ(r.out.find("bench"), std::string::npos);
+  EXPECT_NE(r.out.find("bench"), std::string::npos);
+  EXPECT_EQ(r.out.find("controller"), std::string::npos);  // not written yet
 }
 
 TEST_F(VoxhapCli, EveryCommandHasHelp) {
   for (const auto& args : std::vector<std::vector<std::string>>{
            {"scene", "--help"}, {"scene", "info", "--help"}, {"scene", "generate", "--help"}, {"demo", "--help"},
-           {"voxelize", "--help"}, {"simulate", "--help"}}) {
+           {"voxelize", "--help"}, {"simulate", "--help"},
+           {"bench", "--help"}, {"bench", "table1", "--help"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 0) << args[0];
     EXPECT_NE(r.out.find("Usage: voxhap"), std::string::npos) << r.out;

@@ -1,0 +1,42 @@
+#pragma once
+/// The benchmarks of `voxhap bench NAME`, one function each.
+///
+/// A benchmark measures and fills a BenchTable; `voxhap bench` (commands/bench_command.cpp)
+/// parses its options, refuses what it cannot do and writes the table as text, JSON,
+/// CSV and, for benchmarks with a curve, an SVG plot. Adding one is: write a function
+/// returning its Benchmark and add it to the list in bench_command.cpp.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/bench/bench_table.h"
+#include "app/bench/svg_plot.h"
+#include "app/cli/args.h"
+#include "app/cli/console.h"
+
+namespace voxhap::cli {
+
+/// What a benchmark gets: its parsed options and the console for progress and notes.
+struct BenchContext {
+  const ParsedArgs& args;
+  Console& console;
+};
+
+struct Benchmark {
+  std::string name;                 ///< as typed after `voxhap bench`
+  std::string summary;              ///< one line for `voxhap bench --help`
+  std::string usage;                ///< the options it takes beyond the output ones, e.g. "[--quick]"
+  std::string description;          ///< paragraphs for `voxhap bench NAME --help`
+  std::vector<OptionSpec> options;  ///< its own options; the output options are added for it
+  /// How `--svg` plots its rows; empty for a benchmark with no curve, which refuses --svg.
+  std::function<SvgPlotSpec(const ParsedArgs&)> plot;
+  /// Measures; throws UsageError on bad options, voxhap::Error on bad data.
+  std::function<BenchTable(const BenchContext&)> run;
+};
+
+/// The paper's Table 1: voxelize and load times, triangles, points and voxels of the
+/// built-in scenes at the paper's voxel sizes.
+Benchmark table1Benchmark();
+
+}  // namespace voxhap::cli

@@ -1,0 +1,134 @@
+// `voxhap bench`, run as the real executable: the list of benchmarks, bad names and
+// options, and `table1 --quick` as JSON and CSV. Figures are checked for plausibility
+// only; timings are never asserted (CONVENTIONS: machines are shared and noisy).
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/cli_runner.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using voxhap::test::CliRun;
+using voxhap::test::lineCount;
+using voxhap::test::slurp;
+
+constexpr const char* kTable1Keys[] = {"scenario",   "voxel_size_m",     "point_spacing_m",
+                                       "voxelize_s", "load_s",           "dynamic_triangles",
+                                       "points",     "static_triangles", "voxels"};
+
+class BenchCommand : public voxhap::test::CliTest {};
+
+std::vector<std::string> splitLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST_F(BenchCommand, IsListedByTheTopLevelHelp) {
+  const CliRun r = voxhap({"--help"});
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.out.find("bench"), std::string::npos) << r.out;
+}
+
+TEST_F(BenchCommand, HelpListsTable1AndOnlyBenchmarksThatExist) {
+  const CliRun r = voxhap({"bench", "--help"});
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.out.find("\n  table1 "), std::string::npos) << r.out;
+  for (const char* notYet : {"rotation", "scaling", "extraction"}) {
+    EXPECT_EQ(r.out.find("\n  " + std::string(notYet)), std::string::npos) << notYet << "\n" << r.out;
+  }
+}
+
+TEST_F(BenchCommand, UnknownNameExitsTwoListingTheValidNames) {
+  const CliRun r = voxhap({"bench", "table9"});
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("'table9'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("table1"), std::string::npos) << r.err;
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+}
+
+TEST_F(BenchCommand, Table1RefusesSvgBeforeMeasuring) {
+  const CliRun r = voxhap({"bench", "table1", "--svg", "t.svg"});
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("--svg"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no curve"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "t.svg"));
+}
+
+TEST_F(BenchCommand, CsvIntoAMissingFolderFailsBeforeMeasuring) {
+  const CliRun r = voxhap({"bench", "table1", "--quick", "--csv", "no/such/folder/t.csv"});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("no/such/folder"), std::string::npos) << r.err;
+}
+
+// One run checks JSON, CSV and clean-up together: it voxelizes the landing gear, and
+// CTest runs every test in its own process, so each run costs CI seconds.
+TEST_F(BenchCommand, Table1QuickPrintsPlausibleJsonWritesMatchingCsvAndCleansUp) {
+  const CliRun run = voxhap({"bench", "table1", "--quick", "--json", "--csv", "table1.csv"});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+
+  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(run.out);  // exactly one document
+  EXPECT_EQ(j.at("benchmark"), "table1");
+  EXPECT_EQ(j.at("quick"), true);
+  const nlohmann::ordered_json& rows = j.at("rows");
+  ASSERT_EQ(rows.size(), 2u) << j.dump(2);
+  EXPECT_EQ(rows[0].at("scenario"), "ball-and-socket");
+  EXPECT_EQ(rows[1].at("scenario"), "landing-gear");
+  for (const nlohmann::ordered_json& row : rows) {
+    ASSERT_EQ(row.size(), std::size(kTable1Keys)) << row.dump();
+    std::size_t k = 0;
+    for (const auto& [key, value] : row.items()) EXPECT_EQ(key, kTable1Keys[k++]);  // order fixed
+    for (const char* key : {"voxel_size_m", "point_spacing_m", "voxelize_s", "load_s"}) {
+      ASSERT_TRUE(row.at(key).is_number()) << key << ": " << row.dump();
+      EXPECT_GT(row.at(key).get<double>(), 0.0) << key;
+    }
+    for (const char* key : {"dynamic_triangles", "points", "static_triangles", "voxels"}) {
+      ASSERT_TRUE(row.at(key).is_number_integer()) << key << ": " << row.dump();
+      EXPECT_GT(row.at(key).get<std::int64_t>(), 0) << key;
+    }
+    // the environment's voxels fill its volume and surroundings, the points cover the
+    // dynamic object's surface: both outnumber the triangles
+    EXPECT_GT(row.at("voxels").get<std::int64_t>(), row.at("static_triangles").get<std::int64_t>());
+    EXPECT_GT(row.at("points").get<std::int64_t>(), row.at("dynamic_triangles").get<std::int64_t>());
+  }
+  // the ball: 2048 triangles, radius 25 mm, one point per surface voxel of 0.35 mm
+  EXPECT_EQ(rows[0].at("dynamic_triangles"), 2048);
+  EXPECT_DOUBLE_EQ(rows[0].at("voxel_size_m").get<double>(), 0.35e-3);
+  const double ballAreaInVoxelFaces = 4.0 * 3.14159265358979 * 25.0 * 25.0 / (0.35 * 0.35);
+  EXPECT_GT(rows[0].at("points").get<double>(), ballAreaInVoxelFaces);
+  EXPECT_LT(rows[0].at("points").get<double>(), 3.0 * ballAreaInVoxelFaces);
+  EXPECT_DOUBLE_EQ(rows[1].at("voxel_size_m").get<double>(), 2.5e-3);
+  EXPECT_DOUBLE_EQ(rows[1].at("point_spacing_m").get<double>(), 1.0e-3);
+  EXPECT_GT(rows[1].at("static_triangles").get<std::int64_t>(), 1'000'000);
+
+  const std::vector<std::string> lines = splitLines(slurp(dir_ / "table1.csv"));
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(
+      lines[0],
+      "scenario,voxel_size_m,point_spacing_m,voxelize_s,load_s,dynamic_triangles,points,static_triangles,"
+      "voxels");
+  EXPECT_EQ(lines[1].rfind("ball-and-socket,0.00035,0.00035,", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[2].rfind("landing-gear,0.0025,0.001,", 0), 0u) << lines[2];
+  for (std::size_t r = 0; r < 2; ++r) {
+    const std::string points = std::to_string(rows[r].at("points").get<std::int64_t>());
+    EXPECT_NE(lines[r + 1].find("," + points + ","), std::string::npos) << lines[r + 1];
+  }
+
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir_ / "cache" / "voxels", ec)) {
+    EXPECT_NE(entry.path().filename().string().rfind("bench-table1-", 0), 0u) << entry.path();
+  }
+}
+
+}  // namespace
