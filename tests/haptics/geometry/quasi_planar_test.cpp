@@ -154,25 +154,29 @@ TEST(QuasiPlanar, SubdividedCubeFacesMergeIntoSixPolygons) {
 
 TEST(QuasiPlanar, SubdividedCubeEdgesAddUpToTwelveMetresOfCubeEdges) {
   const int n = 7;
-  const MeshFeatures f = extractFeatures(subdividedCube(n), 0.01);
-  EXPECT_EQ(f.featureEdges.size(), static_cast<std::size_t>(12 * n));
-  EXPECT_NEAR(totalEdgeLength(f), 12.0, 1e-5);
-  for (const auto& e : f.featureEdges) {  // pieces of the cube's edges, never across a face
-    EXPECT_GE(coordinatesOnCubeFaces(e[0]), 2);
-    EXPECT_GE(coordinatesOnCubeFaces(e[1]), 2);
-    EXPECT_NEAR(glm::distance(e[0], e[1]), 1.0f / n, 1e-6f);
+  for (const double voxelSizeM : {0.01, 100.0}) {
+    const MeshFeatures f = extractFeatures(subdividedCube(n), voxelSizeM);
+    EXPECT_EQ(f.featureEdges.size(), static_cast<std::size_t>(12 * n)) << voxelSizeM;
+    EXPECT_NEAR(totalEdgeLength(f), 12.0, 1e-5) << voxelSizeM;
+    for (const auto& e : f.featureEdges) {  // pieces of the cube's edges, never across a face
+      EXPECT_GE(coordinatesOnCubeFaces(e[0]), 2);
+      EXPECT_GE(coordinatesOnCubeFaces(e[1]), 2);
+      EXPECT_NEAR(glm::distance(e[0], e[1]), 1.0f / n, 1e-6f);
+    }
   }
 }
 
 TEST(QuasiPlanar, SubdividedCubeVerticesAreOnlyTheCornersNotWhereCollinearSegmentsMeet) {
-  const MeshFeatures f = extractFeatures(subdividedCube(7), 0.01);
-  ASSERT_EQ(f.featureVertices.size(), 8u);
-  std::set<std::array<float, 3>> corners;
-  for (const glm::vec3& v : f.featureVertices) {
-    EXPECT_TRUE(isUnitCubeCorner(v)) << v.x << " " << v.y << " " << v.z;
-    corners.insert({v.x, v.y, v.z});
+  for (const double voxelSizeM : {0.01, 100.0}) {
+    const MeshFeatures f = extractFeatures(subdividedCube(7), voxelSizeM);
+    ASSERT_EQ(f.featureVertices.size(), 8u) << voxelSizeM;
+    std::set<std::array<float, 3>> corners;
+    for (const glm::vec3& v : f.featureVertices) {
+      EXPECT_TRUE(isUnitCubeCorner(v)) << v.x << " " << v.y << " " << v.z;
+      corners.insert({v.x, v.y, v.z});
+    }
+    EXPECT_EQ(corners.size(), 8u) << voxelSizeM;
   }
-  EXPECT_EQ(corners.size(), 8u);
 }
 
 TEST(QuasiPlanar, SplitVerticesAreWeldedBeforeMerging) {
@@ -183,11 +187,35 @@ TEST(QuasiPlanar, SplitVerticesAreWeldedBeforeMerging) {
   EXPECT_EQ(f.refusedTriangles, 0u);
 }
 
+/// Geodesic sphere of radius `radiusM` centred at the origin: 8·4^subdivisions triangles.
+TriangleMesh sphere(double radiusM, int subdivisions) {
+  TriangleMesh m;
+  appendGeodesicSphere(m, glm::dmat4(1.0), radiusM, subdivisions);
+  return m;
+}
+
 /// Ball of the ball-and-socket scene: radius 25 mm, 2048 triangles.
 TriangleMesh ball() {
-  TriangleMesh m;
-  appendGeodesicSphere(m, glm::dmat4(1.0), 0.025, 4);
-  return m;
+  return sphere(0.025, 4);
+}
+
+glm::dvec3 triangleNormal(const TriangleMesh& m, std::size_t t) {
+  const glm::uvec3& tri = m.triangles[t];
+  const glm::dvec3 a(m.positionsWorld[tri.x]), b(m.positionsWorld[tri.y]), c(m.positionsWorld[tri.z]);
+  return glm::normalize(glm::cross(b - a, c - a));
+}
+
+/// Whether every triangle's normal is less than 90° from the normal of its polygon's
+/// first triangle: no polygon turns through a right angle.
+bool everyPolygonTurnsLessThanRightAngle(const TriangleMesh& m, const MeshFeatures& f) {
+  std::vector<glm::dvec3> firstNormal(f.polygonCount, glm::dvec3(0.0));
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const glm::dvec3 n = triangleNormal(m, t);
+    glm::dvec3& first = firstNormal[f.polygonOfTriangle[t]];
+    if (first == glm::dvec3(0.0)) first = n;
+    if (glm::dot(first, n) <= 0.0) return false;
+  }
+  return true;
 }
 
 TEST(QuasiPlanar, FineVoxelsKeepASphereInManyPolygons) {
@@ -220,6 +248,24 @@ TEST(QuasiPlanar, EveryPolygonOfASphereFitsInASlabOneVoxelThick) {
       EXPECT_LT(high[p] - low[p], voxelSizeM) << "polygon " << p << " voxel " << voxelSizeM;
     }
   }
+}
+
+TEST(QuasiPlanar, NoPolygonOfASphereTurnsThroughARightAngle) {
+  const TriangleMesh m = ball();
+  for (const double voxelSizeM : {0.00035, 0.002, 0.01, 1.0}) {
+    const MeshFeatures f = extractFeatures(m, voxelSizeM);
+    EXPECT_TRUE(everyPolygonTurnsLessThanRightAngle(m, f)) << voxelSizeM;
+  }
+}
+
+TEST(QuasiPlanar, SphereSmallerThanAVoxelIsNeverOnePolygon) {
+  // diameter 0.16 mm, under s/2: every vertex is within s/2 of every triangle's plane,
+  // so only the 90° criterion keeps the sphere from becoming one polygon (paper §4.1)
+  const TriangleMesh m = sphere(0.00008, 3);
+  const MeshFeatures f = extractSilently(m, 0.00035);
+  EXPECT_GE(f.polygonCount, 2u);
+  EXPECT_TRUE(everyPolygonTurnsLessThanRightAngle(m, f));
+  EXPECT_FALSE(f.featureEdges.empty());
 }
 
 TEST(QuasiPlanar, CoarseVoxelsMergeASphereIntoFewPolygonsButNeverOne) {
