@@ -12,4 +12,20 @@ CacheOptions voxelCacheOptions(const ParsedArgs& args) {
           !args.has(kNoCacheOption.longName)};
 }
 
+void useVoxelCache(SceneModelOptions& options, const CacheOptions& cache, Console& console) {
+  options.voxelizeFn = [&cache, &console](std::span<const SceneObject* const> objects, const VoxelizeOptions& o,
+                                          const ProgressFn& progress) {
+    CachedVoxelization v = voxelizeCached(objects, o, cache, progress);
+    for (const std::string& w : v.warnings) console.warning(w);
+    return std::move(v.voxelized.voxmap);
+  };
+  options.pointshellFn = [&cache, &console](const SceneObject& object, const PointshellOptions& o,
+                                            const ProgressFn& progress) {
+    const SceneObject* one[] = {&object};
+    CachedPointshell p = pointshellCached(one, o, cache, progress);
+    for (const std::string& w : p.warnings) console.warning(w);
+    return std::move(p.pointshell);
+  };
+}
+
 }  // namespace voxhap::cli

@@ -3,6 +3,8 @@
 /// shared by every command that voxelizes.
 
 #include "app/cli/args.h"
+#include "app/cli/console.h"
+#include "haptics/sim/scene_model.h"
 #include "haptics/voxel/voxel_cache.h"
 
 namespace voxhap::cli {
@@ -14,5 +16,9 @@ extern const OptionSpec kNoCacheOption;
 
 /// The cache those options ask for; by default userCacheDir()/voxels.
 CacheOptions voxelCacheOptions(const ParsedArgs& args);
+
+/// Makes `options` build its voxmaps and pointshells through `cache`, passing the cache's
+/// warnings to `console` (both must outlive the options).
+void useVoxelCache(SceneModelOptions& options, const CacheOptions& cache, Console& console);
 
 }  // namespace voxhap::cli

@@ -39,4 +39,7 @@ struct Benchmark {
 /// built-in scenes at the paper's voxel sizes.
 Benchmark table1Benchmark();
 
+/// The paper's ball-and-socket measure: one turn of the ball at MaxTravel.
+Benchmark rotationBenchmark();
+
 }  // namespace voxhap::cli

@@ -59,18 +59,7 @@ int runSimulate(const CommandContext& c) {
     if (options.sim.coherence.capacityTests < 1) throw UsageError("--capacity wants at least one point test");
   }
   const CacheOptions cache = voxelCacheOptions(c.args);
-  options.voxelizeFn = [&](std::span<const SceneObject* const> objects, const VoxelizeOptions& o,
-                           const ProgressFn& progress) {
-    CachedVoxelization v = voxelizeCached(objects, o, cache, progress);
-    for (const std::string& w : v.warnings) c.console.warning(w);
-    return std::move(v.voxelized.voxmap);
-  };
-  options.pointshellFn = [&](const SceneObject& object, const PointshellOptions& o, const ProgressFn& progress) {
-    const SceneObject* one[] = {&object};
-    CachedPointshell p = pointshellCached(one, o, cache, progress);
-    for (const std::string& w : p.warnings) c.console.warning(w);
-    return std::move(p.pointshell);
-  };
+  useVoxelCache(options, cache, c.console);
 
   const Scene scene = loadScene(c.args.positionals[0], kDefaultSeed, c.console);
   const SimModel model = buildSceneModel(scene, moving, options, c.console.progress("preparing voxels"));

@@ -38,11 +38,12 @@ TEST_F(BenchCommand, IsListedByTheTopLevelHelp) {
   EXPECT_NE(r.out.find("bench"), std::string::npos) << r.out;
 }
 
-TEST_F(BenchCommand, HelpListsTable1AndOnlyBenchmarksThatExist) {
+TEST_F(BenchCommand, HelpListsTheBenchmarksAndOnlyThoseThatExist) {
   const CliRun r = voxhap({"bench", "--help"});
   EXPECT_EQ(r.exitCode, 0);
   EXPECT_NE(r.out.find("\n  table1 "), std::string::npos) << r.out;
-  for (const char* notYet : {"rotation", "scaling", "extraction"}) {
+  EXPECT_NE(r.out.find("\n  rotation "), std::string::npos) << r.out;
+  for (const char* notYet : {"scaling", "extraction"}) {
     EXPECT_EQ(r.out.find("\n  " + std::string(notYet)), std::string::npos) << notYet << "\n" << r.out;
   }
 }
@@ -129,6 +130,31 @@ TEST_F(BenchCommand, Table1QuickPrintsPlausibleJsonWritesMatchingCsvAndCleansUp)
   for (const auto& entry : fs::directory_iterator(dir_ / "cache" / "voxels", ec)) {
     EXPECT_NE(entry.path().filename().string().rfind("bench-table1-", 0), 0u) << entry.path();
   }
+}
+
+TEST_F(BenchCommand, RotationTurnsTheBallAtItsLimitWhenCapacityIsAmple) {
+  const CliRun r = voxhap({"bench", "rotation", "--voxel-size", "2mm", "--capacity", "1000000", "--json"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = nlohmann::json::parse(r.out).at("rows");
+  ASSERT_EQ(rows.size(), 1u);
+  for (const char* key : {"voxel_size_m", "points", "rotation_s", "limit_s", "mean_contacts", "missed_deadlines"}) {
+    EXPECT_TRUE(rows[0].contains(key)) << key;
+  }
+  EXPECT_EQ(rows[0].at("missed_deadlines"), 0);
+  // frictionless: the ball keeps up with a handle that leads it, at MaxTravel all the way
+  const double limitFrames = rows[0].at("limit_s").get<double>() / 1e-3;
+  EXPECT_NEAR(rows[0].at("frames").get<double>(), limitFrames, 0.05 * limitFrames);
+  EXPECT_GE(rows[0].at("rotation_s").get<double>(), rows[0].at("limit_s").get<double>() * 0.99);
+  EXPECT_GT(rows[0].at("mean_contacts").get<double>(), 0.0);
+}
+
+TEST_F(BenchCommand, RotationWithTooSmallACapacityMissesEveryDeadlineAndGivesUp) {
+  const CliRun r = voxhap({"bench", "rotation", "--voxel-size", "2mm", "--capacity", "1", "--json"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto row = nlohmann::json::parse(r.out).at("rows").at(0);
+  EXPECT_TRUE(row.at("rotation_s").is_null());
+  EXPECT_EQ(row.at("missed_deadlines"), row.at("frames"));
+  EXPECT_EQ(row.at("turned_rad").get<double>(), 0.0);
 }
 
 }  // namespace
