@@ -89,6 +89,7 @@ int runSimulate(const CommandContext& c) {
   double maxForceN = 0.0;
   double sumContacts = 0.0;
   double sumTested = 0.0;
+  double sumChunkTests = 0.0;
   double sumTravelScale = 0.0;
   std::uint64_t framesOverBudget = 0;
   const ProgressFn progress = c.console.progress("simulating");
@@ -99,6 +100,7 @@ int runSimulate(const CommandContext& c) {
     computeUs.push_back(us);
     framesOverBudget += us > model.dtS * 1e6 ? 1 : 0;
     sumTested += state.coherent.tested;
+    sumChunkTests += state.coherent.chunkTests;
     sumTravelScale += state.coherent.travelScale;
     for (std::size_t i = 0; i < model.objects.size(); ++i) {
       const ObjectFrame& o = state.last[i];
@@ -134,6 +136,7 @@ int runSimulate(const CommandContext& c) {
                                      {"mean_contacts", sumContacts * perFrame},
                                      {"max_force_n", maxForceN},
                                      {"mean_tested", sumTested * perFrame},
+                                     {"mean_chunk_tests", sumChunkTests * perFrame},
                                      {"mean_travel_scale", sumTravelScale * perFrame},
                                      {"missed_deadlines", state.missedDeadlines},
                                      {"frames_over_budget", framesOverBudget},
@@ -145,7 +148,7 @@ int runSimulate(const CommandContext& c) {
     c.out << "frames          " << frames << "\nmax contacts    " << maxContacts << "\nmean contacts   "
           << sumContacts * perFrame << "\nmax force       " << maxForceN << " N\nmean tests      "
           << sumTested * perFrame << " per frame (" << (options.sim.coherence.enabled ? "time-critical" : "brute force")
-          << ")\nMaxTravel       " << sumTravelScale * perFrame << " of its bound on average\nmissed deadlines "
+          << "), and " << sumChunkTests * perFrame << " chunk tests\nMaxTravel       " << sumTravelScale * perFrame << " of its bound on average\nmissed deadlines "
           << state.missedDeadlines << "\nover 1 ms        " << framesOverBudget << " frames\ncompute         p50 "
           << p50 << " us, p99 " << p99 << " us, max " << worst << " us\n";
   }

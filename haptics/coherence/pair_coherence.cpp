@@ -3,75 +3,171 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "haptics/coherence/max_travel.h"
 
 namespace voxhap {
+namespace {
+
+/// Chunk queues: 0 in range (points queued), 1 must test now, j ≥ 2 collapsed with a gap
+/// of at least j chunks.
+constexpr int kChunkQueues = 16;
+constexpr int kChunkInRange = 0;
+constexpr int kChunkTestNow = 1;
+/// A chunk in range collapses at a gap of this many chunks; a collapsed one is disgorged
+/// under kCollapsedMin (the difference keeps chunks from flapping).
+constexpr int kCollapseAt = 3;
+constexpr int kCollapsedMin = 2;
+
+}  // namespace
 
 // Room for the queues of the lowest force layer, so that setForceLayer never allocates.
-PairCoherence::PairCoherence(std::uint32_t pointCount, std::uint8_t forceLayer, std::uint8_t maxValue)
-    : queues_(pointCount, queueCountFor(1, maxValue)),
+PairCoherence::PairCoherence(const Pointshell& shell, double voxelSizeM, std::uint8_t forceLayer,
+                             std::uint8_t maxValue)
+    : points_(static_cast<std::uint32_t>(shell.size()), queueCountFor(1, maxValue)),
+      chunks_(static_cast<std::uint32_t>(shell.chunkCount()), kChunkQueues),
+      chunkBegin_(shell.chunkBegin),
+      voxelSizeM_(voxelSizeM),
       forceLayer_(forceLayer),
       maxValue_(maxValue),
-      dueEndByQueue_(static_cast<std::size_t>(queueCountFor(1, maxValue)), 0),
-      owedIndices_(static_cast<std::size_t>(queueCountFor(1, maxValue)), 0.0) {
-  queues_.assignAll(1);
+      dueEndByQueue_(static_cast<std::size_t>(queueCountFor(1, maxValue)), 0) {
+  for (std::size_t c = 0; c < shell.chunkCount(); ++c) {
+    float radiusM = 0.0f;
+    for (std::uint32_t p = chunkBegin_[c]; p < chunkBegin_[c + 1]; ++p) {
+      radiusM = std::max(radiusM, glm::length(shell.positionsLocal[p] - shell.chunkCentroidsLocal[c]));
+    }
+    chunkRadiusVoxels_.push_back(static_cast<float>(radiusM / voxelSizeM));
+  }
+  chunks_.queues().assignAll(kChunkTestNow);
+}
+
+double PairCoherence::pointDistanceM(int q) const noexcept {
+  return q < kMandatoryQueues ? 0.0 : voxelsToContact(q) * voxelSizeM_;
+}
+
+double PairCoherence::chunkDistanceM(int q) const noexcept {
+  const double chunkM = kChunkEdgeVoxels * voxelSizeM_;
+  if (q == kChunkInRange) return chunkM;  // not for safety: how soon it may collapse
+  return q == kChunkTestNow ? 0.0 : (q - 1) * chunkM;
+}
+
+int PairCoherence::chunkClass(const Voxmap& voxmap, const glm::vec3& voxelOfCentroid,
+                              std::uint32_t chunk) const noexcept {
+  const glm::ivec3 ijkChunk(static_cast<int>(std::floor(voxelOfCentroid.x / kChunkEdgeVoxels)),
+                            static_cast<int>(std::floor(voxelOfCentroid.y / kChunkEdgeVoxels)),
+                            static_cast<int>(std::floor(voxelOfCentroid.z / kChunkEdgeVoxels)));
+  const int d = voxmap.chunkDistance(ijkChunk);
+  const double gapVoxels = double((d - 1) * kChunkEdgeVoxels) - double(chunkRadiusVoxels_[chunk]);
+  if (gapVoxels < 0.0) return kChunkInRange;
+  return std::min(kChunkQueues - 1, static_cast<int>(gapVoxels / kChunkEdgeVoxels));
+}
+
+void PairCoherence::testChunk(std::uint32_t chunk, int from, int to) noexcept {
+  PointQueues& chunks = chunks_.queues();
+  const std::uint32_t first = chunkBegin_[chunk];
+  const std::uint32_t last = chunkBegin_[chunk + 1];
+  if (from == kChunkInRange) {
+    if (to < kCollapseAt) return;
+    points_.queues().removeRange(first, last);
+    chunks.move(chunk, from, to);
+  } else if (to >= kCollapsedMin) {
+    chunks.move(chunk, from, to);
+  } else {  // disgorged: every point still reads far
+    points_.queues().insertRange(first, last, queueForValue(kValueFar, forceLayer_, maxValue_));
+    chunks.move(chunk, from, kChunkInRange);
+  }
 }
 
 void PairCoherence::sortAll(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                             const std::array<std::uint8_t, 3>& fieldShifts) noexcept {
-  queues_.assignAll(1);
-  for (std::uint32_t point = 0; point < queues_.pointCount(); ++point) {
-    const PointSample sample = samplePointAt(shell, voxmap, transform, fieldShifts, point);
-    queues_.move(point, 1, queueForValue(sample.value, forceLayer_, maxValue_));
+  points_.queues().clear();
+  chunks_.queues().assignAll(kChunkTestNow);
+  for (std::uint32_t c = 0; c < shell.chunkCount(); ++c) {
+    const int to = chunkClass(voxmap, transform.apply(shell.chunkCentroidsLocal[c]), c);
+    if (to >= kCollapsedMin) {
+      chunks_.queues().move(c, kChunkTestNow, to);
+      continue;
+    }
+    chunks_.queues().move(c, kChunkTestNow, kChunkInRange);
+    for (std::uint32_t p = chunkBegin_[c]; p < chunkBegin_[c + 1]; ++p) {
+      const std::uint8_t value = samplePointAt(shell, voxmap, transform, fieldShifts, p).value;
+      points_.queues().insert(p, queueForValue(value, forceLayer_, maxValue_));
+    }
   }
-  std::fill(owedIndices_.begin(), owedIndices_.end(), 0.0);
+  points_.clearOwed();
+  chunks_.clearOwed();
   lastTravelM_ = 0.0;
-  inRange_ = true;
 }
 
 void PairCoherence::skipFrame(double relativeTravelM) noexcept {
-  if (inRange_) queues_.assignAll(queueForValue(kValueFar, forceLayer_, maxValue_));
-  inRange_ = false;
-  std::fill(owedIndices_.begin(), owedIndices_.end(), 0.0);  // every point is known far now
+  if (chunks_.queues().count(kChunkTestNow) != chunks_.queues().pointCount()) {
+    points_.queues().clear();
+    chunks_.queues().assignAll(kChunkTestNow);
+  }
+  points_.clearOwed();
+  chunks_.clearOwed();
   lastTravelM_ = relativeTravelM;
 }
 
 void PairCoherence::setForceLayer(std::uint8_t forceLayer) noexcept {
+  PointQueues& queues = points_.queues();
+  for (int q = 0; q < queues.queueCount(); ++q) queues.mergeInto(q, 1);
   forceLayer_ = forceLayer;
-  queues_.assignAll(1);
 }
 
-std::uint32_t PairCoherence::collectDue(double relativeTravelM, double voxelSizeM,
-                                        std::span<std::uint32_t> due) noexcept {
-  inRange_ = true;
-  const double pointCount = queues_.pointCount();
+CoherenceLoad PairCoherence::load() const noexcept {
+  CoherenceLoad load;
+  const PointQueues& points = points_.queues();
+  const PointQueues& chunks = chunks_.queues();
+  for (int q = 0; q < queueCountFor(forceLayer_, maxValue_); ++q) {
+    const double d = pointDistanceM(q);
+    if (d > 0.0) {
+      load.testsPerM += points.count(q) / d;
+    } else {
+      load.mandatory += points.count(q);
+    }
+  }
+  for (int q = 0; q < kChunkQueues; ++q) {
+    const double d = chunkDistanceM(q);
+    if (d > 0.0) {
+      load.testsPerM += chunks.count(q) / d;
+    } else {
+      load.mandatory += chunks.count(q);
+    }
+  }
+  return load;
+}
+
+std::uint32_t PairCoherence::updateChunks(const Pointshell& shell, const Voxmap& voxmap,
+                                          const VoxelTransform& transform, double relativeTravelM,
+                                          std::span<std::uint32_t> scratch) noexcept {
+  std::uint32_t tests = 0;
+  for (int q = 0; q < kChunkQueues; ++q) {
+    const std::uint32_t n = chunks_.collect(q, chunkDistanceM(q), relativeTravelM, lastTravelM_, scratch);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t c = scratch[i];
+      testChunk(c, q, chunkClass(voxmap, transform.apply(shell.chunkCentroidsLocal[c]), c));
+    }
+    tests += n;
+  }
+  return tests;
+}
+
+std::uint32_t PairCoherence::collectDue(double relativeTravelM, std::span<std::uint32_t> due) noexcept {
   std::uint32_t n = 0;
   const int queueCount = queueCountFor(forceLayer_, maxValue_);
   for (int q = 0; q < queueCount; ++q) {
-    const auto qi = static_cast<std::size_t>(q);
-    if (q < kMandatoryQueues) {
-      n += queues_.takeAll(q, due.subspan(n));
-    } else {
-      double& owed = owedIndices_[qi];
-      owed = std::min(pointCount, owed + pointCount * lastTravelM_ / (voxelsToContact(q) * voxelSizeM));
-      const std::uint32_t count = queues_.count(q);
-      if (count > 0) {
-        const PointQueues::Sweep sweep = queues_.takeSweep(q, queueQuota(count, q, relativeTravelM, voxelSizeM),
-                                                          static_cast<std::uint64_t>(std::ceil(owed)), due.subspan(n));
-        n += sweep.taken;
-        owed = std::max(0.0, owed - static_cast<double>(sweep.coveredIndices));
-      } else {
-        owed = 0.0;  // nobody waits in an empty queue
-      }
-    }
-    dueEndByQueue_[qi] = n;
+    n += points_.collect(q, pointDistanceM(q), relativeTravelM, lastTravelM_, due.subspan(n));
+    dueEndByQueue_[static_cast<std::size_t>(q)] = n;
   }
-  lastTravelM_ = relativeTravelM;
   return n;
 }
+
 std::uint32_t PairCoherence::testDue(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                                      const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
                                      std::span<const std::uint32_t> due, PointContact* contacts) noexcept {
+  PointQueues& queues = points_.queues();
   std::uint32_t found = 0;
   std::uint32_t at = 0;
   const int queueCount = queueCountFor(forceLayer_, maxValue_);
@@ -84,7 +180,7 @@ std::uint32_t PairCoherence::testDue(const Pointshell& shell, const Voxmap& voxm
       if (static_cast<std::uint8_t>(sample.value - 1u) < sampledLayer) {
         contacts[found++] = {point, sample.ijkVoxel, sample.value};
       }
-      queues_.move(point, q, queueForValue(sample.value, forceLayer_, maxValue_));
+      queues.move(point, q, queueForValue(sample.value, forceLayer_, maxValue_));
     }
   }
   return found;

@@ -1,27 +1,29 @@
 #pragma once
 /// Time-critical sampling of one pair (paper §5, DESIGN §4.5): which of the pointshell's
-/// points to test this frame, and where each goes after its test.
+/// points and chunks to test this frame, and where each goes after its test.
 ///
-/// Every point sits in one distance-to-contact queue (PointQueues, max_travel.h). A frame
-///   1. reads the queue counts (Eq. 2 is solved over all pairs by the caller);
-///   2. collects the due points: all of the mandatory queues and, from every other queue,
-///      a sweep of its cursor;
-///   3. tests them, writes the contacts and moves each point to the queue of its new value.
-/// Collecting before testing keeps a point that changes queue from being tested twice.
+/// Points. Every point of a chunk in range sits in one distance-to-contact queue
+/// (max_travel.h); queues 0 and 1 are tested every frame, queue i ≥ 2 within d_i = i − 1
+/// voxels of relative travel, by sweeps (swept_queues.h). By the paper's quota alone a
+/// point waits while others join the queue ahead of the cursor: in a random-motion test
+/// one waited 6 frames where its 2 voxels allowed 4 and was found in contact untested.
+/// The sweeps also cover the queue's indices at the rate the travel asks, which bounds
+/// every wait; where a queue's points crowd into a run of indices a frame may take more
+/// than its quota.
 ///
-/// The sweep of queue i takes at least the Eq. 3 quota m_i = ceil(n_i · T / (d_i · s)),
-/// as the paper does, and covers at least pointCount · T' / (d_i · s) indices, T' being
-/// the relative travel allowed in the frame before (the motion since the last test). The
-/// second is ours: by quota alone a point waits while others join the queue ahead of the
-/// cursor, and in a random-motion test one waited 6 frames where its 2 voxels allowed 4
-/// and was found in contact untested. By indices, a point joining the queue at any time
-/// is reached once the cursor has covered every index, i.e. before the pair has moved
-/// d_i · s, however the queue fills and however MaxTravel changes. Where a queue's points
-/// crowd into a run of indices, a frame may take more than its quota.
+/// Chunks (paper §5.1). A chunk of the pointshell (its points have contiguous indices)
+/// whose centroid lies at chunk distance D from the voxel-bearing chunks of the voxmap
+/// (Voxmap::chunkDistance) has every point at least gap = (D − 1)·C − ρ from them (C the
+/// voxmap's chunk edge, ρ the chunk's radius about its centroid): all its points read far.
+/// A chunk whose gap is at least 3C leaves the point queues (collapsed) and is tracked in
+/// chunk queue j = floor(gap / C), retested within (j − 1)·C of travel; one whose gap falls
+/// under 2C is disgorged: its points go to the far queue, which is exact for them. Chunk
+/// queue 1 (must test now) is mandatory; chunks in range (queue 0) are retested once per
+/// C of travel, to see whether they may collapse.
 ///
-/// Out of range (the pointshell wholly outside the voxmap's grid) every point is far: it
-/// goes to the far queue when the pair leaves range. A new pair, and one whose force layer
-/// changed, has every point mandatory until tested (sortAll() does it at load time).
+/// Out of range (the pointshell wholly outside the voxmap's grid) every chunk waits in
+/// chunk queue 1 for its test in the first frame back in range; the grid's padding keeps
+/// its points far until then.
 ///
 /// Built once per pair (allocates); the frame calls are noexcept and allocation-free.
 
@@ -30,47 +32,74 @@
 #include <span>
 #include <vector>
 
-#include "haptics/coherence/point_queues.h"
+#include "haptics/coherence/swept_queues.h"
 #include "haptics/collide/point_sampler.h"
 
 namespace voxhap {
 
+/// What a pair's coherence asks of Eq. 2 this frame.
+struct CoherenceLoad {
+  std::uint32_t mandatory = 0;  ///< points and chunks tested whatever the travel
+  double testsPerM = 0.0;       ///< other tests per metre of relative travel per frame
+};
+
 class PairCoherence {
 public:
-  /// For a pointshell of `pointCount` points against voxels whose largest value is
-  /// `maxValue`, with force layer `forceLayer`.
-  PairCoherence(std::uint32_t pointCount, std::uint8_t forceLayer, std::uint8_t maxValue);
+  /// For `shell` against voxels of size `voxelSizeM` whose largest value is `maxValue`,
+  /// with force layer `forceLayer`.
+  PairCoherence(const Pointshell& shell, double voxelSizeM, std::uint8_t forceLayer, std::uint8_t maxValue);
 
-  const PointQueues& queues() const noexcept { return queues_; }
+  const PointQueues& queues() const noexcept { return points_.queues(); }
+  const PointQueues& chunkQueues() const noexcept { return chunks_.queues(); }
   std::uint8_t forceLayer() const noexcept { return forceLayer_; }
 
-  /// Tests every point and puts it in the queue of its value (load time: a whole
-  /// pointshell's worth of tests).
+  /// Tests every chunk and every point of the chunks in range and queues them (load time).
   void sortAll(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                const std::array<std::uint8_t, 3>& fieldShifts) noexcept;
-  /// A frame out of range in which the pair may move `relativeTravelM`: every point is far.
+  /// A frame out of range in which the pair may move `relativeTravelM`.
   void skipFrame(double relativeTravelM) noexcept;
-  /// Makes every point mandatory, to be re-sorted by its next test (a new force layer).
+  /// Makes every point in range mandatory, to be re-sorted by its next test.
   void setForceLayer(std::uint8_t forceLayer) noexcept;
 
-  /// Step 2: collects the due points into `due` (room for the pointshell) for a relative
-  /// travel of at most `relativeTravelM` this frame; returns how many.
-  std::uint32_t collectDue(double relativeTravelM, double voxelSizeM, std::span<std::uint32_t> due) noexcept;
+  /// What the queues ask of Eq. 2 now.
+  CoherenceLoad load() const noexcept;
 
-  /// Step 3: tests the points collectDue() returned; writes those whose value lies in
+  /// Tests the due chunks for a relative travel of at most `relativeTravelM` this frame;
+  /// disgorges and collapses chunks. `scratch` has room for the chunk count. Returns the
+  /// chunk tests.
+  std::uint32_t updateChunks(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
+                             double relativeTravelM, std::span<std::uint32_t> scratch) noexcept;
+
+  /// Collects the due points into `due` (room for the pointshell); returns how many.
+  std::uint32_t collectDue(double relativeTravelM, std::span<std::uint32_t> due) noexcept;
+
+  /// Tests the points collectDue() returned; writes those whose value lies in
   /// [1, sampledLayer] to `contacts` (room for due.size()) and returns how many.
   std::uint32_t testDue(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                         const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
                         std::span<const std::uint32_t> due, PointContact* contacts) noexcept;
 
+  /// Call at the end of a frame in range with the travel it allowed.
+  void endFrame(double relativeTravelM) noexcept { lastTravelM_ = relativeTravelM; }
+
 private:
-  PointQueues queues_;
+  /// What a test of `chunk` finds with its centroid at `voxelOfCentroid` (voxel coordinates):
+  /// 0 (in range) or the whole chunks of its gap, at most the last chunk queue.
+  int chunkClass(const Voxmap& voxmap, const glm::vec3& voxelOfCentroid, std::uint32_t chunk) const noexcept;
+  /// Moves `chunk` from chunk queue `from` to what its test found, `to`.
+  void testChunk(std::uint32_t chunk, int from, int to) noexcept;
+  double chunkDistanceM(int q) const noexcept;
+  double pointDistanceM(int q) const noexcept;
+
+  SweptQueues points_;
+  SweptQueues chunks_;
+  std::vector<std::uint32_t> chunkBegin_;  // the pointshell's, for disgorging without it
+  std::vector<float> chunkRadiusVoxels_;   // per chunk, its points' farthest from the centroid
+  double voxelSizeM_;
   std::uint8_t forceLayer_;
   std::uint8_t maxValue_;
   std::vector<std::uint32_t> dueEndByQueue_;  // collectDue's output: queue q's points end here
-  std::vector<double> owedIndices_;           // per queue, indices its cursor has still to cover
   double lastTravelM_ = 0.0;                  // relative travel allowed in the frame before
-  bool inRange_ = true;
 };
 
 }  // namespace voxhap

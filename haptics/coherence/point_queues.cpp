@@ -53,10 +53,41 @@ void PointQueues::insertRange(std::uint32_t first, std::uint32_t last, int q) no
   for (std::uint32_t p = first; p < last; ++p) insert(p, q);
 }
 
-void PointQueues::assignAll(int q) noexcept {
+void PointQueues::clear() noexcept {
   std::fill(bits_.begin(), bits_.end(), 0u);
   std::fill(summary_.begin(), summary_.end(), 0u);
   std::fill(counts_.begin(), counts_.end(), 0u);
+}
+
+void PointQueues::mergeInto(int from, int to) noexcept {
+  if (from == to) return;
+  std::uint32_t* source = words(from);
+  std::uint32_t* target = words(to);
+  for (std::uint32_t w = 0; w < wordCount_; ++w) {
+    target[w] |= source[w];
+    source[w] = 0;
+  }
+  std::uint32_t* sourceSummary = summary(from);
+  std::uint32_t* targetSummary = summary(to);
+  for (std::uint32_t w = 0; w < summaryCount_; ++w) {
+    targetSummary[w] |= sourceSummary[w];
+    sourceSummary[w] = 0;
+  }
+  counts_[static_cast<std::size_t>(to)] += counts_[static_cast<std::size_t>(from)];
+  counts_[static_cast<std::size_t>(from)] = 0;
+}
+
+void PointQueues::removeRange(std::uint32_t first, std::uint32_t last) noexcept {
+  for (int q = 0; q < queueCount(); ++q) {
+    if (counts_[static_cast<std::size_t>(q)] == 0) continue;
+    for (std::uint32_t p = first; p < last; ++p) {
+      if (words(q)[p / kWordBits] & (1u << (p % kWordBits))) remove(p, q);
+    }
+  }
+}
+
+void PointQueues::assignAll(int q) noexcept {
+  clear();
   if (pointCount_ == 0) return;
   std::uint32_t* w = words(q);
   std::fill(w, w + wordCount_, ~0u);

@@ -40,6 +40,12 @@ public:
   void insertRange(std::uint32_t first, std::uint32_t last, int q) noexcept;
   /// Empties every queue and puts all points into queue `q`, word by word.
   void assignAll(int q) noexcept;
+  /// Empties every queue.
+  void clear() noexcept;
+  /// Moves every point of queue `from` into queue `to`, word by word.
+  void mergeInto(int from, int to) noexcept;
+  /// Takes points [first, last) out of whatever queue holds them (a chunk leaving range).
+  void removeRange(std::uint32_t first, std::uint32_t last) noexcept;
 
   /// What one takeSweep call did.
   struct Sweep {

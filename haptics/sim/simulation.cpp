@@ -49,13 +49,16 @@ bool limitTravel(const RigidBodyState& before, RigidBodyState& after, double rad
 SimState makeSimState(const SimModel& model) {
   SimState state;
   std::size_t largest = 0;
+  std::size_t mostChunks = 0;
   for (const MovingObjectModel& object : model.objects) {
     state.bodies.push_back(restingState(object.body));
     largest = std::max(largest, object.shell.size());
+    mostChunks = std::max(mostChunks, object.shell.chunkCount());
   }
   state.last.resize(model.objects.size());
   state.scratch.resize(largest);
   state.due.resize(largest);
+  state.dueChunks.resize(mostChunks);
   state.pairFrames.resize(model.pairs.size());
   if (!model.pairs.empty()) state.forceLayer = model.pairs.front().params.forceLayer;
   if (!model.coherence.enabled) return state;
@@ -63,7 +66,7 @@ SimState makeSimState(const SimModel& model) {
     const PairModel& pair = model.pairs[p];
     const MovingObjectModel& shellObject = model.objects[static_cast<std::size_t>(pair.shellObject)];
     const Voxmap& voxmap = model.voxmapOf(pair);
-    PairCoherence& coherence = state.coherence.emplace_back(static_cast<std::uint32_t>(shellObject.shell.size()),
+    PairCoherence& coherence = state.coherence.emplace_back(shellObject.shell, voxmap.grid().voxelSizeM,
                                                             state.forceLayer, voxmap.encoding().maxValue());
     const Pose shellToVoxmap = compose(inverse(motionOf(model, state, pair.voxmapObject).poseWorld),
                                        motionOf(model, state, pair.shellObject).poseWorld);
@@ -122,9 +125,9 @@ void planFrame(const SimModel& model, SimState& state) {
     } else {
       frame.transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
       if (coherent) {
-        const auto counts = state.coherence[p].queues().counts();
-        mandatory += mandatoryCount(counts);
-        load += queueLoad(counts) * pair.relativeTravelBoundM / voxmap.grid().voxelSizeM;
+        const CoherenceLoad pairLoad = state.coherence[p].load();
+        mandatory += pairLoad.mandatory;
+        load += pairLoad.testsPerM * pair.relativeTravelBoundM;
       }
     }
   }
@@ -158,10 +161,13 @@ std::uint32_t findContacts(const SimModel& model, SimState& state, std::size_t p
   }
   PairCoherence& coherence = state.coherence[p];
   const double travelM = state.coherent.travelScale * pair.relativeTravelBoundM;
-  const std::uint32_t due = coherence.collectDue(travelM, voxmap.grid().voxelSizeM, state.due);
+  state.coherent.chunkTests += coherence.updateChunks(shell, voxmap, transform, travelM, state.dueChunks);
+  const std::uint32_t due = coherence.collectDue(travelM, state.due);
   tested += due;
-  return coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
-                           std::span(state.due.data(), due), state.scratch.data());
+  const std::uint32_t found = coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
+                                                std::span(state.due.data(), due), state.scratch.data());
+  coherence.endFrame(travelM);
+  return found;
 }
 
 }  // namespace

@@ -46,7 +46,8 @@ struct ObjectFrame {
 /// Time-critical sampling in one frame, over all pairs.
 struct CoherenceFrame {
   std::uint32_t tested = 0;       ///< point tests
-  std::uint32_t mandatory = 0;    ///< of which mandatory (queues 0 and 1)
+  std::uint32_t chunkTests = 0;   ///< chunk-centroid tests
+  std::uint32_t mandatory = 0;    ///< points and chunks tested whatever the travel
   double capacityTests = 0.0;     ///< n_cap used by Eq. 2
   double travelScale = 1.0;       ///< every object's MaxTravel over its upper bound
   bool deadlineMissed = false;    ///< more mandatory tests than capacity: nothing moved
@@ -71,6 +72,7 @@ struct SimState {
   /// Per pair, its queues; empty when coherence is off.
   std::vector<PairCoherence> coherence;
   std::vector<std::uint32_t> due;      ///< room for the largest pointshell's indices
+  std::vector<std::uint32_t> dueChunks;  ///< room for the largest pointshell's chunks
   CoherenceFrame coherent;             ///< the frame just stepped
   std::uint64_t missedDeadlines = 0;   ///< frames with more mandatory tests than capacity
   /// Online estimate of the time one point test (with its share of forces) takes, s.

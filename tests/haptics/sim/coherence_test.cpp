@@ -24,6 +24,16 @@ Scene sphereOverPlate() {
   return scene;
 }
 
+/// A bar 60 mm tall standing 2 mm over the plate: most of its chunks are far from it.
+Scene barOverPlate() {
+  Scene scene;
+  scene.objects.push_back(test::plate());
+  scene.objects.push_back(test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.032)), glm::dvec3(0.004, 0.004, 0.03));
+  }));
+  return scene;
+}
+
 SimModel coupledModel(const Scene& scene, double capacityTests, bool awareness = true) {
   SceneModelOptions options;
   options.sim.geometricalAwareness = awareness;
@@ -45,23 +55,33 @@ std::vector<PointContact> bruteForceContacts(const SimModel& model, const SimSta
   return contacts;
 }
 
-/// A handle that jumps between random poses every `periodS`: through the plate and out,
-/// turning, faster than MaxTravel lets the ball follow.
-MotionScript randomMotion(unsigned seed, double periodS, double durationS) {
+/// A handle that jumps between random poses every `periodS`, turned up to `turnRad` about
+/// `centre`, faster than MaxTravel lets the part follow: down to 2.5 mm into the plate, and
+/// in one run of eight poses out of four lifted 40 mm, out of the plate's grid.
+MotionScript randomMotion(unsigned seed, double periodS, double durationS,
+                          const glm::dvec3& centre = glm::dvec3(0.0, 0.0, kRadius + 0.002), double turnRad = 1.5) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::vector<MotionKeyframe> keys;
   for (double t = 0.0; t <= durationS; t += periodS) {
-    const glm::dvec3 shift(0.006 * unit(random), 0.006 * unit(random), -0.0015 + 0.003 * unit(random));
-    const glm::dquat turn = quatFromRotationVector(1.5 * glm::dvec3(unit(random), unit(random), unit(random)));
-    // turned about the ball's centre, which goes up to 2.5 mm into the plate
-    const glm::dvec3 centre(0.0, 0.0, kRadius + 0.002);
+    const double lift = (keys.size() / 8) % 4 == 3 ? 0.04 : 0.0;
+    const glm::dvec3 shift(0.006 * unit(random), 0.006 * unit(random), -0.0015 + 0.003 * unit(random) + lift);
+    const glm::dquat turn = quatFromRotationVector(turnRad * glm::dvec3(unit(random), unit(random), unit(random)));
     keys.push_back({t, Pose{centre - turn * centre + shift, turn}});
   }
   return MotionScript(std::move(keys), "random motion");
 }
 
-class CoherenceUnderRandomMotion : public testing::TestWithParam<bool> {};
+struct RandomMotionCase {
+  const char* name;
+  Scene (*scene)();
+  glm::dvec3 centre;  ///< of the part, which the handle turns about
+  double turnRad;     ///< largest turn of the handle
+  bool awareness;
+  double capacityShare;  ///< point tests per frame over points: short enough to bind
+};
+
+class CoherenceUnderRandomMotion : public testing::TestWithParam<RandomMotionCase> {};
 
 // A point brute force finds in contact was tested in that frame: it is in the contact queue
 // after the frame (untested points keep their queue, and the contact queue is tested every
@@ -69,43 +89,48 @@ class CoherenceUnderRandomMotion : public testing::TestWithParam<bool> {};
 // through the plate's face between two tests (max_travel.h): those are counted apart and
 // must be caught by their next test; every other contact must be tested in its frame.
 TEST_P(CoherenceUnderRandomMotion, NoPointReachesTheForceLayerUntested) {
-  const bool awareness = GetParam();
-  const Scene scene = sphereOverPlate();
-  const SimModel bounded = coupledModel(scene, 0.0, awareness);
+  const RandomMotionCase& param = GetParam();
+  const Scene scene = param.scene();
+  const SimModel bounded = coupledModel(scene, 0.0, param.awareness);
   const auto points = static_cast<double>(bounded.objects[0].shell.size());
-  // capacity short enough that quotas and MaxTravel both bind (awareness tests fewer)
-  const SimModel model = coupledModel(scene, (awareness ? 0.03 : 0.1) * points, awareness);
+  const SimModel model = coupledModel(scene, param.capacityShare * points, param.awareness);
   std::uint64_t scaledFrames = 0;
   std::uint64_t contactFrames = 0;
   std::uint64_t missedFrames = 0;
+  std::uint64_t collapsedChunkFrames = 0;
+  std::uint64_t outOfRangeFrames = 0;
   std::uint64_t lateThroughAFace = 0;
   double testedShare = 0.0;
   constexpr int kFrames = 3000;
   for (const unsigned seed : {1u, 2u, 3u}) {
-    ScriptedDevice device(randomMotion(seed, 0.05, 3.0));
+    ScriptedDevice device(randomMotion(seed, 0.05, 3.0, param.centre, param.turnRad));
     HapticDevice* devices[] = {&device};
     HandleInput handles[1];
     SimState state = makeSimState(model);
-    // per point, the travel allowed since it was first seen late (−1: not late)
+    // per point, the travel allowed since it was first seen late in this run of contact
+    // (−1: not late)
     std::vector<double> lateTravelM(model.objects[0].shell.size(), -1.0);
     for (int frame = 0; frame < kFrames; ++frame) {
       const std::vector<PointContact> expected = bruteForceContacts(model, state);
+      const std::uint64_t skippedBefore = state.pairsSkipped;
       stepWithDevices(model, state, devices, handles);
       const PointQueues& queues = state.coherence.front().queues();
+      std::vector<double> stillLate(lateTravelM.size(), -1.0);  // a late run ends when the point leaves contact
       for (const PointContact& c : expected) {
-        if (queues.queueOf(c.point) == 0) {
-          lateTravelM[c.point] = -1.0;
-          continue;
-        }
-        const bool throughAFace = awareness && c.value == kValueInterior &&
+        if (queues.queueOf(c.point) == 0) continue;
+        const bool throughAFace = param.awareness && c.value == kValueInterior &&
                                   model.objects[0].shell.features[c.point] != PointFeature::Vertex;
         ASSERT_TRUE(throughAFace) << "seed " << seed << ", frame " << frame << ": point " << c.point
                                   << " reached value " << int(c.value) << " untested";
         ++lateThroughAFace;
         // the far queue, the furthest out, retests within 6 voxels of travel
-        lateTravelM[c.point] = std::max(0.0, lateTravelM[c.point]) + state.last[0].maxTravelM;
-        ASSERT_LE(lateTravelM[c.point], 6.5 * kVoxel) << "seed " << seed << ", frame " << frame;
+        stillLate[c.point] = std::max(0.0, lateTravelM[c.point]) + state.last[0].maxTravelM;
+        ASSERT_LE(stillLate[c.point], 6.5 * kVoxel) << "seed " << seed << ", frame " << frame;
       }
+      lateTravelM.swap(stillLate);
+      const PointQueues& chunks = state.coherence.front().chunkQueues();
+      collapsedChunkFrames += chunks.count(0) + chunks.count(1) < chunks.pointCount() ? 1 : 0;
+      outOfRangeFrames += state.pairsSkipped - skippedBefore;
       missedFrames += state.coherent.deadlineMissed ? 1 : 0;
       scaledFrames += state.coherent.travelScale < 1.0 ? 1 : 0;
       contactFrames += expected.empty() ? 0 : 1;
@@ -113,15 +138,25 @@ TEST_P(CoherenceUnderRandomMotion, NoPointReachesTheForceLayerUntested) {
     }
   }
   RecordProperty("late_through_a_face", static_cast<int>(lateThroughAFace));
-  // the run exercised what it claims to: contact, a short capacity, partial testing
-  EXPECT_GT(contactFrames, 2000u);
-  EXPECT_GT(scaledFrames, 1000u);
+  // the run exercised what it claims to: contact, a short capacity, partial testing,
+  // collapsed chunks, leaving range and coming back
+  EXPECT_GT(contactFrames, 500u);
+  EXPECT_GT(scaledFrames, 300u);
   EXPECT_LT(testedShare / (3 * kFrames), 0.25);
+  EXPECT_GT(collapsedChunkFrames, 500u);
+  EXPECT_GT(outOfRangeFrames, 100u);
   EXPECT_EQ(missedFrames, 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Awareness, CoherenceUnderRandomMotion, testing::Bool(),
-                         [](const testing::TestParamInfo<bool>& info) { return info.param ? "On" : "Off"; });
+const RandomMotionCase kRandomMotionCases[] = {
+    {"SphereAware", sphereOverPlate, glm::dvec3(0.0, 0.0, kRadius + 0.002), 1.5, true, 0.03},
+    {"SphereUnaware", sphereOverPlate, glm::dvec3(0.0, 0.0, kRadius + 0.002), 1.5, false, 0.1},
+    {"TallBarAware", barOverPlate, glm::dvec3(0.0, 0.0, 0.032), 0.1, true, 0.05},
+    {"TallBarUnaware", barOverPlate, glm::dvec3(0.0, 0.0, 0.032), 0.1, false, 0.1},
+};
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CoherenceUnderRandomMotion, testing::ValuesIn(kRandomMotionCases),
+                         [](const testing::TestParamInfo<RandomMotionCase>& info) { return info.param.name; });
 
 TEST(Coherence, MaxTravelHoldsEveryPointOfTheObject) {
   const Scene scene = sphereOverPlate();
