@@ -54,6 +54,7 @@ int runSimulate(const CommandContext& c) {
   options.sim.geometricalAwareness = !c.args.has("no-awareness");
   options.sim.preContactDamping = c.args.has("pre-contact-damping");
   options.sim.coherence.enabled = !c.args.has("brute-force");
+  options.sim.coherence.pointDrifting = !c.args.has("no-drifting");
   if (const auto capacity = c.args.value("capacity")) {
     options.sim.coherence.capacityTests = static_cast<double>(parseUnsigned(*capacity, "capacity"));
     if (options.sim.coherence.capacityTests < 1) throw UsageError("--capacity wants at least one point test");
@@ -90,6 +91,7 @@ int runSimulate(const CommandContext& c) {
   double sumContacts = 0.0;
   double sumTested = 0.0;
   double sumChunkTests = 0.0;
+  double sumDrifted = 0.0;
   double sumTravelScale = 0.0;
   std::uint64_t framesOverBudget = 0;
   const ProgressFn progress = c.console.progress("simulating");
@@ -101,6 +103,7 @@ int runSimulate(const CommandContext& c) {
     framesOverBudget += us > model.dtS * 1e6 ? 1 : 0;
     sumTested += state.coherent.tested;
     sumChunkTests += state.coherent.chunkTests;
+    sumDrifted += state.coherent.drifted;
     sumTravelScale += state.coherent.travelScale;
     for (std::size_t i = 0; i < model.objects.size(); ++i) {
       const ObjectFrame& o = state.last[i];
@@ -136,6 +139,7 @@ int runSimulate(const CommandContext& c) {
                                      {"mean_contacts", sumContacts * perFrame},
                                      {"max_force_n", maxForceN},
                                      {"mean_tested", sumTested * perFrame},
+                                     {"mean_drifted", sumDrifted * perFrame},
                                      {"mean_chunk_tests", sumChunkTests * perFrame},
                                      {"mean_travel_scale", sumTravelScale * perFrame},
                                      {"missed_deadlines", state.missedDeadlines},
@@ -196,6 +200,7 @@ Command simulateCommand() {
       {"pre-contact-damping", 0, "", "damp points approaching in the layer just outside the force layer"},
       {"capacity", 0, "N", "point tests per frame (default: measured online)"},
       {"brute-force", 0, "", "test every point every frame (no time-critical sampling), for comparison"},
+      {"no-drifting", 0, "", "look every due point up in the voxmap (no point drifting, paper §5.2)"},
       {"duration", 0, "SECONDS", "simulated time (default: the longest script)"},
       {"trace", 0, "FILE.csv", "write the per-frame trace"},
       kCacheDirOption,

@@ -24,14 +24,17 @@ constexpr int kCollapsedMin = 2;
 
 // Room for the queues of the lowest force layer, so that setForceLayer never allocates.
 PairCoherence::PairCoherence(const Pointshell& shell, double voxelSizeM, std::uint8_t forceLayer,
-                             std::uint8_t maxValue)
+                             std::uint8_t maxValue, bool drifting)
     : points_(static_cast<std::uint32_t>(shell.size()), queueCountFor(1, maxValue)),
       chunks_(static_cast<std::uint32_t>(shell.chunkCount()), kChunkQueues),
       chunkBegin_(shell.chunkBegin),
       voxelSizeM_(voxelSizeM),
       forceLayer_(forceLayer),
       maxValue_(maxValue),
-      dueEndByQueue_(static_cast<std::size_t>(queueCountFor(1, maxValue)), 0) {
+      dueEndByQueue_(static_cast<std::size_t>(queueCountFor(1, maxValue)), 0),
+      drifting_(drifting),
+      lookupVoxel_(drifting ? shell.size() : 0),
+      lookupQueue_(drifting ? shell.size() : 0, 0) {
   for (std::size_t c = 0; c < shell.chunkCount(); ++c) {
     float radiusM = 0.0f;
     for (std::uint32_t p = chunkBegin_[c]; p < chunkBegin_[c + 1]; ++p) {
@@ -75,6 +78,7 @@ void PairCoherence::testChunk(std::uint32_t chunk, int from, int to) noexcept {
     chunks.move(chunk, from, to);
   } else {  // disgorged: every point still reads far
     points_.queues().insertRange(first, last, queueForValue(kValueFar, forceLayer_, maxValue_));
+    if (drifting_) std::fill(lookupQueue_.begin() + first, lookupQueue_.begin() + last, std::uint8_t{0});
     chunks.move(chunk, from, kChunkInRange);
   }
 }
@@ -93,6 +97,7 @@ void PairCoherence::sortAll(const Pointshell& shell, const Voxmap& voxmap, const
     for (std::uint32_t p = chunkBegin_[c]; p < chunkBegin_[c + 1]; ++p) {
       const std::uint8_t value = samplePointAt(shell, voxmap, transform, fieldShifts, p).value;
       points_.queues().insert(p, queueForValue(value, forceLayer_, maxValue_));
+      if (drifting_) lookupQueue_[p] = 0;  // tested at load, but start every point afresh
     }
   }
   points_.clearOwed();
@@ -113,6 +118,7 @@ void PairCoherence::skipFrame(double relativeTravelM) noexcept {
 void PairCoherence::setForceLayer(std::uint8_t forceLayer) noexcept {
   PointQueues& queues = points_.queues();
   for (int q = 0; q < queues.queueCount(); ++q) queues.mergeInto(q, 1);
+  std::fill(lookupQueue_.begin(), lookupQueue_.end(), std::uint8_t{0});
   forceLayer_ = forceLayer;
 }
 
@@ -164,26 +170,44 @@ std::uint32_t PairCoherence::collectDue(double relativeTravelM, std::span<std::u
   return n;
 }
 
-std::uint32_t PairCoherence::testDue(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                                     const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
-                                     std::span<const std::uint32_t> due, PointContact* contacts) noexcept {
+PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxmap& voxmap,
+                                             const VoxelTransform& transform,
+                                             const std::array<std::uint8_t, 3>& fieldShifts,
+                                             std::uint8_t sampledLayer, std::span<const std::uint32_t> due,
+                                             PointContact* contacts) noexcept {
   PointQueues& queues = points_.queues();
-  std::uint32_t found = 0;
+  Tested tested;
   std::uint32_t at = 0;
   const int queueCount = queueCountFor(forceLayer_, maxValue_);
   for (int q = 0; q < queueCount; ++q) {
     const std::uint32_t end = dueEndByQueue_[static_cast<std::size_t>(q)];
     for (; at < end && at < due.size(); ++at) {
       const std::uint32_t point = due[at];
-      const PointSample sample = samplePointAt(shell, voxmap, transform, fieldShifts, point);
+      const glm::vec3 voxel = transform.apply(shell.positionsLocal[point]);
+      if (drifting_ && q >= kMandatoryQueues && lookupQueue_[point] >= kMandatoryQueues) {
+        const float guaranteedVoxels =
+            static_cast<float>(voxelsToContact(lookupQueue_[point])) - glm::length(voxel - lookupVoxel_[point]);
+        if (guaranteedVoxels >= 2.0f) {
+          queues.move(point, q, std::min(q, static_cast<int>(guaranteedVoxels) + 1));
+          ++tested.drifted;
+          continue;
+        }
+      }
+      const PointSample sample =
+          sampleAt(voxmap, voxel, fieldShifts[static_cast<std::size_t>(shell.features[point])]);
       // value − 1 wraps far (0) to 255, so one compare keeps [1, sampledLayer]
       if (static_cast<std::uint8_t>(sample.value - 1u) < sampledLayer) {
-        contacts[found++] = {point, sample.ijkVoxel, sample.value};
+        contacts[tested.contacts++] = {point, sample.ijkVoxel, sample.value};
       }
-      queues.move(point, q, queueForValue(sample.value, forceLayer_, maxValue_));
+      const int found = queueForValue(sample.value, forceLayer_, maxValue_);
+      queues.move(point, q, found);
+      if (drifting_) {
+        lookupVoxel_[point] = voxel;
+        lookupQueue_[point] = static_cast<std::uint8_t>(found);
+      }
     }
   }
-  return found;
+  return tested;
 }
 
 }  // namespace voxhap

@@ -21,6 +21,14 @@
 /// queue 1 (must test now) is mandatory; chunks in range (queue 0) are retested once per
 /// C of travel, to see whether they may collapse.
 ///
+/// Point drifting (paper §5.2). A test that reads the voxmap (a lookup) stores where the
+/// point was, in voxel coordinates, and the queue it found. A later test of a point in
+/// queue ≥ 2 first measures its drift δ (voxels) from there: while the i₀ − 1 − δ voxels
+/// still guaranteed from the lookup's queue i₀ are at least two (two queues of margin,
+/// as the paper keeps), it skips the lookup and at most lowers the point's queue to
+/// floor(i₀ − 1 − δ) + 1; otherwise it looks up again. Points of a disgorged chunk have
+/// no lookup and get one at their first test.
+///
 /// Out of range (the pointshell wholly outside the voxmap's grid) every chunk waits in
 /// chunk queue 1 for its test in the first frame back in range; the grid's padding keeps
 /// its points far until then.
@@ -46,8 +54,9 @@ struct CoherenceLoad {
 class PairCoherence {
 public:
   /// For `shell` against voxels of size `voxelSizeM` whose largest value is `maxValue`,
-  /// with force layer `forceLayer`.
-  PairCoherence(const Pointshell& shell, double voxelSizeM, std::uint8_t forceLayer, std::uint8_t maxValue);
+  /// with force layer `forceLayer`; `drifting` turns point drifting on.
+  PairCoherence(const Pointshell& shell, double voxelSizeM, std::uint8_t forceLayer, std::uint8_t maxValue,
+                bool drifting);
 
   const PointQueues& queues() const noexcept { return points_.queues(); }
   const PointQueues& chunkQueues() const noexcept { return chunks_.queues(); }
@@ -73,11 +82,16 @@ public:
   /// Collects the due points into `due` (room for the pointshell); returns how many.
   std::uint32_t collectDue(double relativeTravelM, std::span<std::uint32_t> due) noexcept;
 
+  /// What testDue() did.
+  struct Tested {
+    std::uint32_t contacts = 0;  ///< written to `contacts`
+    std::uint32_t drifted = 0;   ///< tests that skipped the lookup
+  };
   /// Tests the points collectDue() returned; writes those whose value lies in
-  /// [1, sampledLayer] to `contacts` (room for due.size()) and returns how many.
-  std::uint32_t testDue(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                        const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
-                        std::span<const std::uint32_t> due, PointContact* contacts) noexcept;
+  /// [1, sampledLayer] to `contacts` (room for due.size()).
+  Tested testDue(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
+                 const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
+                 std::span<const std::uint32_t> due, PointContact* contacts) noexcept;
 
   /// Call at the end of a frame in range with the travel it allowed.
   void endFrame(double relativeTravelM) noexcept { lastTravelM_ = relativeTravelM; }
@@ -99,6 +113,9 @@ private:
   std::uint8_t forceLayer_;
   std::uint8_t maxValue_;
   std::vector<std::uint32_t> dueEndByQueue_;  // collectDue's output: queue q's points end here
+  bool drifting_;
+  std::vector<glm::vec3> lookupVoxel_;      // per point, where its last lookup was (voxel coordinates)
+  std::vector<std::uint8_t> lookupQueue_;   // per point, the queue that lookup found; 0: none
   double lastTravelM_ = 0.0;                  // relative travel allowed in the frame before
 };
 

@@ -45,15 +45,19 @@ struct PointSample {
   std::uint8_t value;   ///< the field value read there (0 … 2^bits − 1)
 };
 
+/// Reads the field at `shift` where voxel coordinates `voxelCoords` fall.
+inline PointSample sampleAt(const Voxmap& voxmap, const glm::vec3& voxelCoords, std::uint8_t shift) noexcept {
+  const glm::ivec3 ijk(static_cast<int>(std::floor(voxelCoords.x)), static_cast<int>(std::floor(voxelCoords.y)),
+                       static_cast<int>(std::floor(voxelCoords.z)));
+  return {ijk, static_cast<std::uint8_t>((voxmap.word(ijk) >> shift) & voxmap.encoding().fieldMask())};
+}
+
 /// Tests point `index` of `shell`; `fieldShifts` comes from fieldShiftsByFeature. Inline:
 /// the hot loops of samplePoints and of time-critical sampling are built from it.
 inline PointSample samplePointAt(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                                  const std::array<std::uint8_t, 3>& fieldShifts, std::uint32_t index) noexcept {
-  const glm::vec3 u = transform.apply(shell.positionsLocal[index]);
-  const glm::ivec3 ijk(static_cast<int>(std::floor(u.x)), static_cast<int>(std::floor(u.y)),
-                       static_cast<int>(std::floor(u.z)));
-  const std::uint8_t shift = fieldShifts[static_cast<std::size_t>(shell.features[index])];
-  return {ijk, static_cast<std::uint8_t>((voxmap.word(ijk) >> shift) & voxmap.encoding().fieldMask())};
+  return sampleAt(voxmap, transform.apply(shell.positionsLocal[index]),
+                  fieldShifts[static_cast<std::size_t>(shell.features[index])]);
 }
 
 /// The field each feature label samples: geometrical awareness or the surface field.

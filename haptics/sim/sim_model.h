@@ -72,6 +72,9 @@ struct CoherenceOptions {
   /// Share of the frame period that point tests and forces may take when the capacity is
   /// measured online; the rest is for dynamics, devices and the network.
   double testBudgetFraction = 0.5;
+  /// Point drifting (paper §5.2): tests of points far from contact skip the voxmap lookup
+  /// while their drift since the last lookup leaves two queues of margin.
+  bool pointDrifting = true;
 };
 
 struct SimModel {

@@ -66,8 +66,9 @@ SimState makeSimState(const SimModel& model) {
     const PairModel& pair = model.pairs[p];
     const MovingObjectModel& shellObject = model.objects[static_cast<std::size_t>(pair.shellObject)];
     const Voxmap& voxmap = model.voxmapOf(pair);
-    PairCoherence& coherence = state.coherence.emplace_back(shellObject.shell, voxmap.grid().voxelSizeM,
-                                                            state.forceLayer, voxmap.encoding().maxValue());
+    PairCoherence& coherence =
+        state.coherence.emplace_back(shellObject.shell, voxmap.grid().voxelSizeM, state.forceLayer,
+                                     voxmap.encoding().maxValue(), model.coherence.pointDrifting);
     const Pose shellToVoxmap = compose(inverse(motionOf(model, state, pair.voxmapObject).poseWorld),
                                        motionOf(model, state, pair.shellObject).poseWorld);
     if (inRange(shellObject, shellToVoxmap, voxmap.grid())) {
@@ -164,10 +165,11 @@ std::uint32_t findContacts(const SimModel& model, SimState& state, std::size_t p
   state.coherent.chunkTests += coherence.updateChunks(shell, voxmap, transform, travelM, state.dueChunks);
   const std::uint32_t due = coherence.collectDue(travelM, state.due);
   tested += due;
-  const std::uint32_t found = coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
-                                                std::span(state.due.data(), due), state.scratch.data());
+  const PairCoherence::Tested t = coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
+                                                   std::span(state.due.data(), due), state.scratch.data());
+  state.coherent.drifted += t.drifted;
   coherence.endFrame(travelM);
-  return found;
+  return t.contacts;
 }
 
 }  // namespace

@@ -46,6 +46,7 @@ struct ObjectFrame {
 /// Time-critical sampling in one frame, over all pairs.
 struct CoherenceFrame {
   std::uint32_t tested = 0;       ///< point tests
+  std::uint32_t drifted = 0;      ///< of the point tests, those that skipped the lookup (drifting)
   std::uint32_t chunkTests = 0;   ///< chunk-centroid tests
   std::uint32_t mandatory = 0;    ///< points and chunks tested whatever the travel
   double capacityTests = 0.0;     ///< n_cap used by Eq. 2
