@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 namespace voxhap {
 namespace {
@@ -50,9 +51,24 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
   PairWrench out;
   if (contacts.empty()) return out;
   const Pose shellToVoxmap = compose(inverse(voxmapMotion.poseWorld), shellMotion.poseWorld);
+  const glm::dmat3 shellToVoxmapRotation = glm::mat3_cast(shellToVoxmap.orientation);
   const glm::dvec3 shellComInVoxmap = apply(shellToVoxmap, shellMotion.comLocal);
   const glm::dvec3 shellComWorld = apply(shellMotion.poseWorld, shellMotion.comLocal);
   const glm::dvec3 voxmapComWorld = apply(voxmapMotion.poseWorld, voxmapMotion.comLocal);
+  // velocity of the shell relative to the voxmap object at a point p of the voxmap frame:
+  // linear + angular × p, both constant over the frame's contacts
+  const Pose worldToVoxmap = inverse(voxmapMotion.poseWorld);
+  const glm::dvec3 angular = applyRotation(worldToVoxmap, shellMotion.angularVelocityWorld -
+                                                              voxmapMotion.angularVelocityWorld);
+  const glm::dvec3 linearWorld = shellMotion.linearVelocityWorld -
+                                 glm::cross(shellMotion.angularVelocityWorld, shellComWorld) -
+                                 voxmapMotion.linearVelocityWorld +
+                                 glm::cross(voxmapMotion.angularVelocityWorld, voxmapComWorld);
+  // the velocity field v(x) = linearWorld + ω_rel × x in world, taken to the voxmap frame:
+  // x = R p + t gives v = R⁻¹(linearWorld + ω_rel × t) + (R⁻¹ω_rel) × p
+  const glm::dvec3 linear = applyRotation(
+      worldToVoxmap, linearWorld + glm::cross(shellMotion.angularVelocityWorld - voxmapMotion.angularVelocityWorld,
+                                              voxmapMotion.poseWorld.position));
   const VoxelGrid& grid = voxmap.grid();
   const double s = grid.voxelSizeM;
   const auto shifts = fieldShiftsByFeature(params.geometricalAwareness, voxmap.encoding());
@@ -63,8 +79,8 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
   glm::dvec3 torque[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
   std::uint32_t acting[2] = {0, 0};
   for (const PointContact& c : contacts) {
-    const glm::dvec3 p = apply(shellToVoxmap, glm::dvec3(shell.positionsLocal[c.point]));
-    const glm::dvec3 n = applyRotation(shellToVoxmap, glm::dvec3(shell.normalsLocal[c.point]));
+    const glm::dvec3 p = shellToVoxmapRotation * glm::dvec3(shell.positionsLocal[c.point]) + shellToVoxmap.position;
+    const glm::dvec3 n = shellToVoxmapRotation * glm::dvec3(shell.normalsLocal[c.point]);
     const PointFeature feature = shell.features[c.point];
     const glm::dvec3 pushDirection = pushDirectionOf(voxmap, c, feature, params.geometricalAwareness,
                                                      shifts[static_cast<std::size_t>(feature)], n);
@@ -74,13 +90,7 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
                                              static_cast<double>(params.forceLayer - c.value) * s;
     out.contactPoints += beforeContact ? 0 : 1;
     if (!beforeContact && depth <= 0.0) continue;
-    // approach speed along the push direction, world frame
-    const glm::dvec3 pWorld = apply(voxmapMotion.poseWorld, p);
-    const glm::dvec3 vShell = shellMotion.linearVelocityWorld +
-                              glm::cross(shellMotion.angularVelocityWorld, pWorld - shellComWorld);
-    const glm::dvec3 vVoxmap = voxmapMotion.linearVelocityWorld +
-                               glm::cross(voxmapMotion.angularVelocityWorld, pWorld - voxmapComWorld);
-    const double approach = glm::dot(vShell - vVoxmap, applyRotation(voxmapMotion.poseWorld, pushDirection));
+    const double approach = glm::dot(linear + glm::cross(angular, p), pushDirection);
     const double push = std::max(0.0, params.pointStiffnessNPerM * depth + params.pointDampingNsPerM * approach);
     if (push == 0.0) continue;
     out.maxDepthM = std::max(out.maxDepthM, depth);
