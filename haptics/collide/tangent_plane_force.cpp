@@ -30,14 +30,15 @@ glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8
 /// samples names the voxmap object's feature. A vertex there (surface points under
 /// geometrical awareness): the point's own normal `n`. A surface (vertex points, or any
 /// point without awareness): the surface's normal, the field's fall direction `g` (a
-/// corner or edge has no normal of its own worth pushing along), except that a surface
-/// point meeting a surface keeps `n`. An edge (edge points): between the two.
+/// corner or edge has no normal of its own worth pushing along, and a surface point on
+/// the side of a part resting on a plate would push sideways along its own normal). An
+/// edge (edge points): between the two.
 glm::dvec3 pushDirectionOf(const Voxmap& voxmap, const PointContact& contact, PointFeature feature, bool aware,
                            std::uint8_t fieldShift, const glm::dvec3& n) {
-  if (feature == PointFeature::Surface) return n;
+  if (feature == PointFeature::Surface && aware) return n;
   glm::dvec3 g = fallDirection(voxmap, contact.ijkVoxel, fieldShift);
   if (g == glm::dvec3(0.0)) g = n;
-  if (feature == PointFeature::Vertex || !aware) return g;
+  if (feature != PointFeature::Edge || !aware) return g;
   const glm::dvec3 between = n + g;
   const double length = glm::length(between);
   return length > 1e-6 ? between / length : n;

@@ -245,6 +245,5 @@ TEST(Coherence, SameInputsGiveTheSameBitsWithAFixedCapacity) {
   EXPECT_EQ(std::memcmp(&end[0], &end[1], sizeof(RigidBodyState)), 0);
 }
 
-// temporary debug: appended to coherence_test
 }  // namespace
 }  // namespace voxhap

@@ -402,20 +402,13 @@ TEST(StabilityStress, BoxDraggedAtTheStiffestStableCouplingStaysFinite) {
   runDragged(draggedModel(scene, kMaxStableStiffnessMultiple), scene, kFrames, bounds);
 }
 
-// ---------------------------------------------------------------------------------------
-// known failures, kept with their assertions (run with --gtest_also_run_disabled_tests)
-
-// DISABLED: energy grows. Without geometrical awareness a surface point keeps its own
-// normal as the push direction (tangent_plane_force.cpp, pushDirectionOf), so the points
-// of the bar's side faces in the force layer push sideways, and the two long sides do
-// not cancel (they sit at different offsets in their voxels). The bar (80 × 6 × 6 mm,
-// 1 mm voxels, ~570 contacts) comes to rest on the plate and then feels a steady
-// sideways contact force of 3.8 mN, 1.7 % of its weight; with no friction it accelerates
-// along −y, gaining kinetic energy, reaches the plate's edge 0.72 s in, tips over it and
-// falls. Measured: the energy rises 2.4e-7 J above its lowest since 0.5 s by frame 501
-// (tolerance 2.6e-9 J), 3.1e-4 J by the time it tips; a flat box, a 20 mm box and a cylinder do the same, a ball keeps rocking
-// (1e-10 J of kinetic energy after 10 s, 7e-8 J above its settled lowest).
-TEST(StabilityStress, DISABLED_BarRestingOnHundredsOfContactsNeverGainsEnergy) {
+// Without geometrical awareness every point meets the plate's surface. When side-face
+// points pushed along their own horizontal normals, the two long sides did not cancel
+// (they sit at different offsets in their voxels): the 80 × 6 × 6 mm bar (1 mm voxels,
+// ~570 contacts) felt 3.8 mN sideways, 1.7 % of its weight, slid off the plate 0.72 s in,
+// and its energy rose 2.4e-7 J above its lowest by frame 501. They push along the plate's
+// normal now (tangent_plane_force.h).
+TEST(StabilityStress, BarRestingOnHundredsOfContactsNeverGainsEnergy) {
   constexpr int kFrames = framesOf(20'000);
   Scene scene;
   scene.objects.push_back(test::plate());
@@ -440,6 +433,9 @@ TEST(StabilityStress, DISABLED_BarRestingOnHundredsOfContactsNeverGainsEnergy) {
   EXPECT_GE(fewestSettledContacts, 100u);
   EXPECT_LT(totalKineticEnergyJ(model, state), energy.toleranceJ());
 }
+
+// ---------------------------------------------------------------------------------------
+// known failures, kept with their assertions (run with --gtest_also_run_disabled_tests)
 
 // DISABLED: never comes to rest. The coupling alone is stable up to 48 times its default
 // stiffness (a box held in free space at 47 times settles to 1e-14 m/s), but touching
