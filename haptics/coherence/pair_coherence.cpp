@@ -122,6 +122,11 @@ void PairCoherence::setForceLayer(std::uint8_t forceLayer) noexcept {
   forceLayer_ = forceLayer;
 }
 
+bool PairCoherence::onlyCollapsed() const noexcept {
+  const PointQueues& chunks = chunks_.queues();
+  return chunks.count(kChunkInRange) == 0 && chunks.count(kChunkTestNow) == 0;
+}
+
 CoherenceLoad PairCoherence::load() const noexcept {
   CoherenceLoad load;
   const PointQueues& points = points_.queues();

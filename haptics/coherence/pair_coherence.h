@@ -72,6 +72,10 @@ public:
 
   /// What the queues ask of Eq. 2 now.
   CoherenceLoad load() const noexcept;
+  /// Whether every chunk is collapsed: no point can reach contact before its chunk has
+  /// been disgorged, so the pair allows half a chunk of travel per frame (a collapsed
+  /// chunk is retested while it is still that far from being disgorged).
+  bool onlyCollapsed() const noexcept;
 
   /// Tests the due chunks for a relative travel of at most `relativeTravelM` this frame;
   /// disgorges and collapses chunks. `scratch` has room for the chunk count. Returns the

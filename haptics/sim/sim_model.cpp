@@ -96,18 +96,15 @@ SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxm
   for (MovingObjectModel& object : model.objects) object.maxTravelM = std::numeric_limits<double>::infinity();
   for (PairModel& pair : model.pairs) {
     pair.params = pairParams(model, pair, options);
-    const double half = 0.5 * model.voxmapOf(pair).grid().voxelSizeM;
+    const Voxmap& voxmap = model.voxmapOf(pair);
+    pair.fieldShifts = fieldShiftsByFeature(pair.params.geometricalAwareness, voxmap.encoding());
+    const double share = pair.voxmapObject == kStaticEnvironment ? 0.5 : 0.25;
+    pair.nearTravelM = share * voxmap.grid().voxelSizeM;
+    pair.farTravelM = share * kChunkEdgeVoxels * voxmap.grid().voxelSizeM;
     for (const int i : {pair.shellObject, pair.voxmapObject}) {
       if (i == kStaticEnvironment) continue;
       double& travel = model.objects[static_cast<std::size_t>(i)].maxTravelM;
-      travel = std::min(travel, pair.voxmapObject == kStaticEnvironment ? half : 0.5 * half);
-    }
-  }
-  for (PairModel& pair : model.pairs) {
-    pair.fieldShifts = fieldShiftsByFeature(pair.params.geometricalAwareness, model.voxmapOf(pair).encoding());
-    pair.relativeTravelBoundM = model.objects[static_cast<std::size_t>(pair.shellObject)].maxTravelM;
-    if (pair.voxmapObject != kStaticEnvironment) {
-      pair.relativeTravelBoundM += model.objects[static_cast<std::size_t>(pair.voxmapObject)].maxTravelM;
+      travel = std::min(travel, pair.nearTravelM);
     }
   }
   return model;

@@ -42,9 +42,10 @@ struct MovingObjectModel {
   double shellRadiusM = 0.0;     ///< largest distance of a point from the centre of mass, m
   glm::dvec3 shellCentreLocal{0.0};  ///< centre of the pointshell's bounding sphere, m
   double shellBoundRadiusM = 0.0;    ///< radius of that sphere, m
-  /// Upper bound of MaxTravel, the most any of its points may move in a frame, m: half
-  /// the finest voxel of its pairs, halved again when both objects of the pair move
-  /// (infinite when it has no pair). Eq. 2 scales it down when the capacity is short.
+  /// Upper bound of MaxTravel near contact, the most any of its points may move in a
+  /// frame, m: half the finest voxel of its pairs, halved again when both objects of the
+  /// pair move (infinite when it has no pair). Far from everything the bound rises
+  /// (PairModel::farTravelM); Eq. 2 scales it down when the capacity is short.
   double maxTravelM = 0.0;
   bool coupled = false;          ///< a handle drives it through a virtual coupling
   CouplingGains gains;           ///< of that coupling
@@ -56,9 +57,12 @@ struct PairModel {
   int voxmapObject = kStaticEnvironment;  ///< index of the moving object sampled as voxels, or static
   ContactParams params;
   std::array<std::uint8_t, 3> fieldShifts{};  ///< per point feature, from fieldShiftsByFeature
-  /// Most the two objects may move toward each other in a frame: the sum of their
-  /// maxTravelM, m.
-  double relativeTravelBoundM = 0.0;
+  /// Most each of its objects may move in a frame for this pair's sake, m: half a voxel
+  /// of its voxmap while any of its chunks is in range (paper §5), half a chunk while the
+  /// pair is out of range or all its chunks are collapsed (§5.1, pair_coherence.h);
+  /// halved again when both objects move.
+  double nearTravelM = 0.0;
+  double farTravelM = 0.0;
 };
 
 /// Time-critical sampling (paper §5, DESIGN §4.5).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -56,6 +57,7 @@ SimState makeSimState(const SimModel& model) {
     mostChunks = std::max(mostChunks, object.shell.chunkCount());
   }
   state.last.resize(model.objects.size());
+  state.travelBoundM.resize(model.objects.size());
   state.scratch.resize(largest);
   state.due.resize(largest);
   state.dueChunks.resize(mostChunks);
@@ -109,11 +111,10 @@ Pose objectPose(const SimModel& model, const SimState& state, std::size_t object
 
 namespace {
 
-/// Step 1: which pairs are in range, and Eq. 2 over them.
+/// Step 1: which pairs are in range, every object's MaxTravel bound, and Eq. 2 over them.
 void planFrame(const SimModel& model, SimState& state) {
   const bool coherent = !state.coherence.empty();
-  double mandatory = 0.0;
-  double load = 0.0;
+  for (double& bound : state.travelBoundM) bound = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     const PairModel& pair = model.pairs[p];
     PairFrame& frame = state.pairFrames[p];
@@ -121,15 +122,28 @@ void planFrame(const SimModel& model, SimState& state) {
     const Pose shellToVoxmap = compose(inverse(motionOf(model, state, pair.voxmapObject).poseWorld),
                                        motionOf(model, state, pair.shellObject).poseWorld);
     frame.inRange = inRange(model.objects[static_cast<std::size_t>(pair.shellObject)], shellToVoxmap, voxmap.grid());
-    if (!frame.inRange) {
-      ++state.pairsSkipped;
-    } else {
-      frame.transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
-      if (coherent) {
-        const CoherenceLoad pairLoad = state.coherence[p].load();
-        mandatory += pairLoad.mandatory;
-        load += pairLoad.testsPerM * pair.relativeTravelBoundM;
-      }
+    if (frame.inRange) frame.transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
+    state.pairsSkipped += frame.inRange ? 0 : 1;
+    const bool far = coherent && (!frame.inRange || state.coherence[p].onlyCollapsed());
+    for (const int i : {pair.shellObject, pair.voxmapObject}) {
+      if (i == kStaticEnvironment) continue;
+      double& bound = state.travelBoundM[static_cast<std::size_t>(i)];
+      bound = std::min(bound, far ? pair.farTravelM : pair.nearTravelM);
+    }
+  }
+  double mandatory = 0.0;
+  double load = 0.0;
+  for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+    const PairModel& pair = model.pairs[p];
+    PairFrame& frame = state.pairFrames[p];
+    frame.relativeTravelBoundM = state.travelBoundM[static_cast<std::size_t>(pair.shellObject)];
+    if (pair.voxmapObject != kStaticEnvironment) {
+      frame.relativeTravelBoundM += state.travelBoundM[static_cast<std::size_t>(pair.voxmapObject)];
+    }
+    if (coherent && frame.inRange) {
+      const CoherenceLoad pairLoad = state.coherence[p].load();
+      mandatory += pairLoad.mandatory;
+      load += pairLoad.testsPerM * frame.relativeTravelBoundM;
     }
   }
   CoherenceFrame& plan = state.coherent;
@@ -161,7 +175,7 @@ std::uint32_t findContacts(const SimModel& model, SimState& state, std::size_t p
     return samplePoints(shell, voxmap, transform, pair.fieldShifts, sampledLayer, 0, points, state.scratch.data());
   }
   PairCoherence& coherence = state.coherence[p];
-  const double travelM = state.coherent.travelScale * pair.relativeTravelBoundM;
+  const double travelM = state.coherent.travelScale * state.pairFrames[p].relativeTravelBoundM;
   state.coherent.chunkTests += coherence.updateChunks(shell, voxmap, transform, travelM, state.dueChunks);
   const std::uint32_t due = coherence.collectDue(travelM, state.due);
   tested += due;
@@ -184,7 +198,9 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     const PairModel& pair = model.pairs[p];
     if (!state.pairFrames[p].inRange) {
-      if (!state.coherence.empty()) state.coherence[p].skipFrame(state.coherent.travelScale * pair.relativeTravelBoundM);
+      if (!state.coherence.empty()) {
+        state.coherence[p].skipFrame(state.coherent.travelScale * state.pairFrames[p].relativeTravelBoundM);
+      }
       continue;
     }
     std::uint32_t tested = 0;
@@ -237,7 +253,8 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
     const RigidBodyState before = body;
     integrate(object.body, body, force, torque, model.dtS);
     // an object without pairs has an infinite bound, which no scale makes finite
-    f.maxTravelM = std::isinf(object.maxTravelM) ? object.maxTravelM : state.coherent.travelScale * object.maxTravelM;
+    const double bound = state.travelBoundM[i];
+    f.maxTravelM = std::isinf(bound) ? bound : state.coherent.travelScale * bound;
     f.travelLimited = limitTravel(before, body, object.shellRadiusM, f.maxTravelM);
     state.travelLimitedFrames += f.travelLimited ? 1 : 0;
   }

@@ -8,7 +8,8 @@
 ///      and opposite;
 ///   3. each coupled object feels its handle through the virtual coupling; each object is
 ///      integrated as a free rigid body (gravity, coupling, contacts);
-///   4. its motion is limited to MaxTravel (at most half a voxel, paper §5), which the
+///   4. its motion is limited to MaxTravel (at most half a voxel near contact, paper §5;
+///      half a chunk when all its pairs are out of range or collapsed, §5.1), which the
 ///      user feels as viscosity;
 ///   5. the device of each coupled object gets the negated coupling wrench, clamped.
 /// All buffers live in SimState, sized by makeSimState: step() never allocates, locks,
@@ -58,6 +59,7 @@ struct CoherenceFrame {
 struct PairFrame {
   VoxelTransform transform;
   bool inRange = false;
+  double relativeTravelBoundM = 0.0;  ///< its two objects' MaxTravel bounds this frame, summed
 };
 
 /// Everything that changes per frame.
@@ -70,6 +72,7 @@ struct SimState {
   std::uint64_t travelLimitedFrames = 0;  ///< object-frames that MaxTravel held back
   std::vector<PointContact> scratch;   ///< room for the largest pointshell's contacts
   std::vector<PairFrame> pairFrames;   ///< per pair
+  std::vector<double> travelBoundM;    ///< per moving object, its MaxTravel bound this frame, m
   /// Per pair, its queues; empty when coherence is off.
   std::vector<PairCoherence> coherence;
   std::vector<std::uint32_t> due;      ///< room for the largest pointshell's indices

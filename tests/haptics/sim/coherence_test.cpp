@@ -225,9 +225,53 @@ TEST(Coherence, AnObjectOutOfRangeCostsNoPointTests) {
   for (int frame = 0; frame < 10; ++frame) {
     step(model, state, handles);
     EXPECT_EQ(state.coherent.tested, 0u);
-    EXPECT_EQ(state.last[0].maxTravelM, 0.5 * kVoxel);
+    // far from everything MaxTravel rises to half a chunk (8 voxels)
+    EXPECT_EQ(state.last[0].maxTravelM, 4.0 * kVoxel);
   }
   EXPECT_EQ(state.pairsSkipped, 10u);
+}
+
+TEST(Coherence, FarInRangeTheChunksCollapseAndMaxTravelRisesUntilTheyComeBack) {
+  // a tall post makes the plate's grid tall: the ball is in range but far from every surface
+  Scene scene = sphereOverPlate();
+  scene.objects.push_back(test::meshObject("post", ObjectRole::Static, [](TriangleMesh& m) {
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.045, 0.045, 0.05)), glm::dvec3(0.004, 0.004, 0.05));
+  }));
+  scene.objects[1] = test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.05)), kRadius, 4);
+  });
+  const SimModel model = coupledModel(scene, 1e6);
+  SimState state = makeSimState(model);
+  const PairCoherence& coherence = state.coherence.front();
+  EXPECT_TRUE(coherence.onlyCollapsed());
+  // the handle takes the ball down onto the plate, 40 mm in 0.2 s, and holds it there
+  const std::vector<MotionKeyframe> keys = {{0.0, Pose{}},
+                                            {0.2, Pose{glm::dvec3(0.0, 0.0, -0.0405), identityQuat()}},
+                                            {0.5, Pose{glm::dvec3(0.0, 0.0, -0.0405), identityQuat()}}};
+  ScriptedDevice device(MotionScript(keys, "down"));
+  HapticDevice* devices[] = {&device};
+  HandleInput handles[1];
+  std::uint32_t farFrames = 0;
+  std::uint32_t contactFrames = 0;
+  for (int frame = 0; frame < 500; ++frame) {
+    const std::size_t expected = bruteForceContacts(model, state).size();
+    const bool far = coherence.onlyCollapsed();
+    stepWithDevices(model, state, devices, handles);
+    ASSERT_EQ(state.last[0].contacts, expected) << "frame " << frame;
+    if (far) {
+      ++farFrames;
+      EXPECT_EQ(state.last[0].maxTravelM, 4.0 * kVoxel);
+      // no point tests unless a chunk came back in this frame
+      if (coherence.onlyCollapsed()) {
+        EXPECT_EQ(state.coherent.tested, 0u);
+      }
+    } else {
+      EXPECT_EQ(state.last[0].maxTravelM, 0.5 * kVoxel);
+    }
+    contactFrames += expected > 0 ? 1 : 0;
+  }
+  EXPECT_GT(farFrames, 10u);
+  EXPECT_GT(contactFrames, 100u);
 }
 
 TEST(Coherence, SameInputsGiveTheSameBitsWithAFixedCapacity) {
