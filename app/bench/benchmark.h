@@ -39,4 +39,8 @@ struct Benchmark {
 /// built-in scenes at the paper's voxel sizes.
 Benchmark table1Benchmark();
 
+/// The paper's landing-gear task (§7): the actuator extraction of `voxhap demo` at
+/// several resolutions, with frame timings, deadlines, contacts and exact penetration.
+Benchmark extractionBenchmark();
+
 }  // namespace voxhap::cli
