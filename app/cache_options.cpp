@@ -13,17 +13,18 @@ CacheOptions voxelCacheOptions(const ParsedArgs& args) {
 }
 
 void useVoxelCache(SceneModelOptions& options, const CacheOptions& cache, Console& console) {
-  options.voxelizeFn = [&cache, &console](std::span<const SceneObject* const> objects, const VoxelizeOptions& o,
-                                          const ProgressFn& progress) {
+  Console* warnings = &console;
+  options.voxelizeFn = [cache, warnings](std::span<const SceneObject* const> objects, const VoxelizeOptions& o,
+                                         const ProgressFn& progress) {
     CachedVoxelization v = voxelizeCached(objects, o, cache, progress);
-    for (const std::string& w : v.warnings) console.warning(w);
+    for (const std::string& w : v.warnings) warnings->warning(w);
     return std::move(v.voxelized.voxmap);
   };
-  options.pointshellFn = [&cache, &console](const SceneObject& object, const PointshellOptions& o,
-                                            const ProgressFn& progress) {
+  options.pointshellFn = [cache, warnings](const SceneObject& object, const PointshellOptions& o,
+                                           const ProgressFn& progress) {
     const SceneObject* one[] = {&object};
     CachedPointshell p = pointshellCached(one, o, cache, progress);
-    for (const std::string& w : p.warnings) console.warning(w);
+    for (const std::string& w : p.warnings) warnings->warning(w);
     return std::move(p.pointshell);
   };
 }

@@ -18,7 +18,7 @@ extern const OptionSpec kNoCacheOption;
 CacheOptions voxelCacheOptions(const ParsedArgs& args);
 
 /// Makes `options` build its voxmaps and pointshells through `cache`, passing the cache's
-/// warnings to `console` (both must outlive the options).
+/// warnings to `console` (which must outlive the options).
 void useVoxelCache(SceneModelOptions& options, const CacheOptions& cache, Console& console);
 
 }  // namespace voxhap::cli

@@ -42,4 +42,8 @@ Benchmark table1Benchmark();
 /// The paper's ball-and-socket measure: one turn of the ball at MaxTravel.
 Benchmark rotationBenchmark();
 
+/// The paper's landing-gear task (§7): the actuator extraction of `voxhap demo` at
+/// several resolutions, with frame timings, deadlines, contacts and exact penetration.
+Benchmark extractionBenchmark();
+
 }  // namespace voxhap::cli

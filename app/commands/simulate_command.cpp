@@ -1,30 +1,24 @@
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <memory>
 
-#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/cache_options.h"
 #include "app/cli/command.h"
 #include "app/commands/commands.h"
 #include "app/scene_source.h"
+#include "app/sim_run.h"
 #include "haptics/core/error.h"
 #include "haptics/sim/scene_model.h"
 #include "haptics/sim/simulation.h"
-#include "haptics/voxel/voxel_cache.h"
 
 namespace voxhap::cli {
 namespace {
 
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size()))) - 1;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-  return values[k];
-}
+/// Voxel size of the static scene unless --voxel-size says otherwise, m.
+constexpr double kDefaultVoxelSizeM = 1e-3;
 
 int runSimulate(const CommandContext& c) {
   if (c.args.positionals.size() != 1) throw UsageError("expected one SCENE");
@@ -40,37 +34,13 @@ int runSimulate(const CommandContext& c) {
     devices.push_back(std::make_unique<ScriptedDevice>(loadMotionScript(scripts[scripts.size() == 1 ? 0 : i])));
   }
 
-  SceneModelOptions options;
-  options.staticVoxelSizeM = parseLengthM(c.args.value("voxel-size").value_or("1mm"), "voxel-size");
-  options.pointSpacingM = c.args.value("point-spacing")
-                              ? parseLengthM(*c.args.value("point-spacing"), "point-spacing")
-                              : options.staticVoxelSizeM;
-  if (const auto offset = c.args.value("point-offset")) {
-    options.pointDisplacementM = parseLengthM(*offset, "point-offset", LengthSign::Any);
-  }
-  if (const auto layer = c.args.value("point-layer")) {
-    options.pointFreeLayer = static_cast<int>(std::min<std::uint64_t>(parseUnsigned(*layer, "point-layer"), 1000));
-  }
-  options.sim.geometricalAwareness = !c.args.has("no-awareness");
-  options.sim.preContactDamping = c.args.has("pre-contact-damping");
-  options.sim.coherence.enabled = !c.args.has("brute-force");
-  options.sim.coherence.pointDrifting = !c.args.has("no-drifting");
-  if (const auto capacity = c.args.value("capacity")) {
-    options.sim.coherence.capacityTests = static_cast<double>(parseUnsigned(*capacity, "capacity"));
-    if (options.sim.coherence.capacityTests < 1) throw UsageError("--capacity wants at least one point test");
-  }
-  const CacheOptions cache = voxelCacheOptions(c.args);
-  useVoxelCache(options, cache, c.console);
-
+  const SceneModelOptions options = sceneModelOptionsFromArgs(c.args, c.console, kDefaultVoxelSizeM);
   const Scene scene = loadScene(c.args.positionals[0], kDefaultSeed, c.console);
   const SimModel model = buildSceneModel(scene, moving, options, c.console.progress("preparing voxels"));
 
-  double durationS = 0.0;
-  for (const auto& d : devices) durationS = std::max(durationS, d->script().durationS());
-  if (const auto duration = c.args.value("duration")) {
-    durationS = std::stod(*duration);
-    if (!(durationS >= 0.0) || !std::isfinite(durationS)) throw UsageError("--duration wants seconds ≥ 0");
-  }
+  double scriptS = 0.0;
+  for (const auto& d : devices) scriptS = std::max(scriptS, d->script().durationS());
+  const double durationS = durationFromArgs(c.args, scriptS);
   const auto frames = static_cast<std::uint64_t>(std::llround(durationS / model.dtS));
 
   std::ofstream trace;
@@ -82,79 +52,37 @@ int runSimulate(const CommandContext& c) {
 
   std::vector<HapticDevice*> deviceOf(model.objects.size(), nullptr);
   for (std::size_t i = 0; i < devices.size(); ++i) deviceOf[i] = devices[i].get();
-  std::vector<HandleInput> handles(model.objects.size());
-  std::vector<double> computeUs;
-  computeUs.reserve(frames);
   SimState state = makeSimState(model);
-  std::uint32_t maxContacts = 0;
-  double maxForceN = 0.0;
-  double sumContacts = 0.0;
-  double sumTested = 0.0;
-  double sumChunkTests = 0.0;
-  double sumDrifted = 0.0;
-  double sumTravelScale = 0.0;
-  std::uint64_t framesOverBudget = 0;
-  const ProgressFn progress = c.console.progress("simulating");
-  for (std::uint64_t f = 0; f < frames; ++f) {
-    const auto start = std::chrono::steady_clock::now();
-    stepWithDevices(model, state, deviceOf, handles);
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-    computeUs.push_back(us);
-    framesOverBudget += us > model.dtS * 1e6 ? 1 : 0;
-    sumTested += state.coherent.tested;
-    sumChunkTests += state.coherent.chunkTests;
-    sumDrifted += state.coherent.drifted;
-    sumTravelScale += state.coherent.travelScale;
-    for (std::size_t i = 0; i < model.objects.size(); ++i) {
-      const ObjectFrame& o = state.last[i];
-      maxContacts = std::max(maxContacts, o.contacts);
-      sumContacts += o.contacts;
-      maxForceN = std::max(maxForceN, glm::length(o.contactForceWorld));
-      if (!trace.is_open()) continue;
-      const Pose pose = objectPose(model, state, i);
-      trace << state.frame << ',' << state.timeS << ',' << model.objects[i].name << ',' << pose.orientation.w << ','
-            << pose.orientation.x << ',' << pose.orientation.y << ',' << pose.orientation.z << ','
-            << pose.position.x << ',' << pose.position.y << ',' << pose.position.z << ','
-            << o.contactForceWorld.x << ',' << o.contactForceWorld.y << ',' << o.contactForceWorld.z << ','
-            << o.contactTorqueWorld.x << ',' << o.contactTorqueWorld.y << ',' << o.contactTorqueWorld.z << ','
-            << o.contacts << ',' << o.tested << ',' << o.maxTravelM << ',' << us << '\n';
-    }
-    if (progress && f % 100 == 0) progress(static_cast<double>(f) / static_cast<double>(frames));
+  FrameStats stats;
+  AfterFrameFn writeTrace;
+  if (trace.is_open()) {
+    writeTrace = [&](std::uint64_t, double us) {
+      for (std::size_t i = 0; i < model.objects.size(); ++i) {
+        const ObjectFrame& o = state.last[i];
+        const Pose pose = objectPose(model, state, i);
+        trace << state.frame << ',' << state.timeS << ',' << model.objects[i].name << ',' << pose.orientation.w << ','
+              << pose.orientation.x << ',' << pose.orientation.y << ',' << pose.orientation.z << ','
+              << pose.position.x << ',' << pose.position.y << ',' << pose.position.z << ','
+              << o.contactForceWorld.x << ',' << o.contactForceWorld.y << ',' << o.contactForceWorld.z << ','
+              << o.contactTorqueWorld.x << ',' << o.contactTorqueWorld.y << ',' << o.contactTorqueWorld.z << ','
+              << o.contacts << ',' << o.tested << ',' << o.maxTravelM << ',' << us << '\n';
+      }
+    };
   }
-  if (progress) progress(1.0);
+  runFrames(model, state, deviceOf, frames, stats, c.console.progress("simulating"), writeTrace);
   if (trace.is_open() && !trace.flush()) throw Error(*c.args.value("trace") + ": writing the trace failed");
 
-  const double p50 = percentile(computeUs, 0.5);
-  const double p99 = percentile(computeUs, 0.99);
-  const double worst = computeUs.empty() ? 0.0 : *std::max_element(computeUs.begin(), computeUs.end());
-  const double perFrame = frames > 0 ? 1.0 / static_cast<double>(frames) : 0.0;
   if (c.args.has("json")) {
     nlohmann::ordered_json result = {{"scene", scene.sourceName},
                                      {"moving", moving},
                                      {"voxel_size_m", options.staticVoxelSizeM},
                                      {"point_spacing_m", options.pointSpacingM},
-                                     {"coherence", options.sim.coherence.enabled},
-                                     {"frames", frames},
-                                     {"max_contacts", maxContacts},
-                                     {"mean_contacts", sumContacts * perFrame},
-                                     {"max_force_n", maxForceN},
-                                     {"mean_tested", sumTested * perFrame},
-                                     {"mean_drifted", sumDrifted * perFrame},
-                                     {"mean_chunk_tests", sumChunkTests * perFrame},
-                                     {"mean_travel_scale", sumTravelScale * perFrame},
-                                     {"missed_deadlines", state.missedDeadlines},
-                                     {"frames_over_budget", framesOverBudget},
-                                     {"pairs_skipped", state.pairsSkipped},
-                                     {"travel_limited_frames", state.travelLimitedFrames},
-                                     {"compute_us", {{"p50", p50}, {"p99", p99}, {"max", worst}}}};
+                                     {"coherence", options.sim.coherence.enabled}};
+    const nlohmann::ordered_json frameSummary = frameStatsJson(stats, state);
+    for (const auto& [key, value] : frameSummary.items()) result[key] = value;
     c.out << result.dump(2) << "\n";
   } else {
-    c.out << "frames          " << frames << "\nmax contacts    " << maxContacts << "\nmean contacts   "
-          << sumContacts * perFrame << "\nmax force       " << maxForceN << " N\nmean tests      "
-          << sumTested * perFrame << " per frame (" << (options.sim.coherence.enabled ? "time-critical" : "brute force")
-          << "), and " << sumChunkTests * perFrame << " chunk tests\nMaxTravel       " << sumTravelScale * perFrame << " of its bound on average\nmissed deadlines "
-          << state.missedDeadlines << "\nover 1 ms        " << framesOverBudget << " frames\ncompute         p50 "
-          << p50 << " us, p99 " << p99 << " us, max " << worst << " us\n";
+    printFrameStats(c.out, stats, state, options.sim.coherence.enabled);
   }
   return kExitOk;
 }

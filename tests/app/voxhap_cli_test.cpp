@@ -31,7 +31,7 @@ TEST_F(VoxhapCli, EveryCommandHasHelp) {
   for (const auto& args : std::vector<std::vector<std::string>>{
            {"scene", "--help"}, {"scene", "info", "--help"}, {"scene", "generate", "--help"}, {"demo", "--help"},
            {"voxelize", "--help"}, {"simulate", "--help"},
-           {"bench", "--help"}, {"bench", "table1", "--help"}}) {
+           {"bench", "--help"}, {"bench", "table1", "--help"}, {"bench", "extraction", "--help"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 0) << args[0];
     EXPECT_NE(r.out.find("Usage: voxhap"), std::string::npos) << r.out;

@@ -1,0 +1,151 @@
+#include "app/sim_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "app/cache_options.h"
+#include "app/cli/command.h"
+#include "haptics/voxel/voxel_cache.h"
+
+namespace voxhap::cli {
+
+SceneModelOptions sceneModelOptionsFromArgs(const ParsedArgs& args, Console& console,
+                                            double defaultVoxelSizeM,
+                                            std::optional<double> defaultPointSpacingM) {
+  SceneModelOptions options;
+  options.staticVoxelSizeM =
+      args.value("voxel-size") ? parseLengthM(*args.value("voxel-size"), "voxel-size") : defaultVoxelSizeM;
+  options.pointSpacingM = args.value("point-spacing")
+                              ? parseLengthM(*args.value("point-spacing"), "point-spacing")
+                              : defaultPointSpacingM.value_or(options.staticVoxelSizeM);
+  if (const auto offset = args.value("point-offset")) {
+    options.pointDisplacementM = parseLengthM(*offset, "point-offset", LengthSign::Any);
+  }
+  if (const auto layer = args.value("point-layer")) {
+    options.pointFreeLayer =
+        static_cast<int>(std::min<std::uint64_t>(parseUnsigned(*layer, "point-layer"), 1000));
+  }
+  options.sim.geometricalAwareness = !args.has("no-awareness");
+  options.sim.preContactDamping = args.has("pre-contact-damping");
+  options.sim.coherence.enabled = !args.has("brute-force");
+  options.sim.coherence.pointDrifting = !args.has("no-drifting");
+  if (const auto capacity = args.value("capacity")) {
+    options.sim.coherence.capacityTests = static_cast<double>(parseUnsigned(*capacity, "capacity"));
+    if (options.sim.coherence.capacityTests < 1) throw UsageError("--capacity wants at least one point test");
+  }
+  useVoxelCache(options, voxelCacheOptions(args), console);
+  return options;
+}
+
+double durationFromArgs(const ParsedArgs& args, double defaultS) {
+  const auto duration = args.value("duration");
+  if (!duration) return defaultS;
+  double seconds = -1.0;
+  try {
+    std::size_t used = 0;
+    seconds = std::stod(*duration, &used);
+    if (used != duration->size()) seconds = -1.0;
+  } catch (const std::exception&) {
+    seconds = -1.0;
+  }
+  if (!(seconds >= 0.0) || !std::isfinite(seconds))
+    throw UsageError("--duration wants seconds ≥ 0, got '" + *duration + "'");
+  return seconds;
+}
+
+void FrameStats::add(const SimModel& model, const SimState& state, double computeUsOfFrame) {
+  computeUs.push_back(computeUsOfFrame);
+  framesOverBudget += computeUsOfFrame > model.dtS * 1e6 ? 1 : 0;
+  sumTested += state.coherent.tested;
+  sumDrifted += state.coherent.drifted;
+  sumChunkTests += state.coherent.chunkTests;
+  sumTravelScale += state.coherent.travelScale;
+  for (std::size_t i = 0; i < model.objects.size(); ++i) {
+    const ObjectFrame& o = state.last[i];
+    maxContacts = std::max(maxContacts, o.contacts);
+    sumContacts += o.contacts;
+    maxForceN = std::max(maxForceN, glm::length(o.contactForceWorld));
+  }
+}
+
+double FrameStats::meanContacts() const {
+  return computeUs.empty() ? 0.0 : sumContacts / static_cast<double>(frames());
+}
+double FrameStats::meanTested() const {
+  return computeUs.empty() ? 0.0 : sumTested / static_cast<double>(frames());
+}
+double FrameStats::meanDrifted() const {
+  return computeUs.empty() ? 0.0 : sumDrifted / static_cast<double>(frames());
+}
+double FrameStats::meanChunkTests() const {
+  return computeUs.empty() ? 0.0 : sumChunkTests / static_cast<double>(frames());
+}
+double FrameStats::meanTravelScale() const {
+  return computeUs.empty() ? 0.0 : sumTravelScale / static_cast<double>(frames());
+}
+
+double FrameStats::computePercentileUs(double p) const {
+  if (computeUs.empty()) return 0.0;
+  std::vector<double> values = computeUs;
+  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size())));
+  const std::size_t k = std::clamp<std::size_t>(rank, 1, values.size()) - 1;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
+
+double FrameStats::computeMaxUs() const {
+  return computeUs.empty() ? 0.0 : *std::max_element(computeUs.begin(), computeUs.end());
+}
+
+void runFrames(const SimModel& model, SimState& state, std::span<HapticDevice* const> devices,
+               std::uint64_t frames, FrameStats& stats, const ProgressFn& progress,
+               const AfterFrameFn& afterFrame) {
+  std::vector<HandleInput> handles(model.objects.size());
+  stats.computeUs.reserve(stats.computeUs.size() + frames);
+  for (std::uint64_t f = 0; f < frames; ++f) {
+    const auto start = std::chrono::steady_clock::now();
+    stepWithDevices(model, state, devices, handles);
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    stats.add(model, state, us);
+    if (afterFrame) afterFrame(f, us);
+    if (progress && f % 100 == 0) progress(static_cast<double>(f) / static_cast<double>(frames));
+  }
+  if (progress) progress(1.0);
+}
+
+nlohmann::ordered_json frameStatsJson(const FrameStats& stats, const SimState& state) {
+  return {{"frames", stats.frames()},
+          {"max_contacts", stats.maxContacts},
+          {"mean_contacts", stats.meanContacts()},
+          {"max_force_n", stats.maxForceN},
+          {"mean_tested", stats.meanTested()},
+          {"mean_drifted", stats.meanDrifted()},
+          {"mean_chunk_tests", stats.meanChunkTests()},
+          {"mean_travel_scale", stats.meanTravelScale()},
+          {"missed_deadlines", state.missedDeadlines},
+          {"frames_over_budget", stats.framesOverBudget},
+          {"pairs_skipped", state.pairsSkipped},
+          {"travel_limited_frames", state.travelLimitedFrames},
+          {"compute_us",
+           {{"p50", stats.computePercentileUs(0.5)},
+            {"p99", stats.computePercentileUs(0.99)},
+            {"max", stats.computeMaxUs()}}}};
+}
+
+void printFrameStats(std::ostream& out, const FrameStats& stats, const SimState& state, bool coherence) {
+  out << "frames          " << stats.frames() << "\nmax contacts    " << stats.maxContacts
+      << "\nmean contacts   " << stats.meanContacts() << "\nmax force       " << stats.maxForceN
+      << " N\nmean tests      " << stats.meanTested() << " per frame ("
+      << (coherence ? "time-critical" : "brute force") << "; " << stats.meanDrifted() << " of them drifting), "
+      << stats.meanChunkTests() << " chunk tests\nMaxTravel       " << stats.meanTravelScale()
+      << " of its bound on average\nmissed deadlines " << state.missedDeadlines << "\nover 1 ms        "
+      << stats.framesOverBudget << " frames\ncompute         p50 " << stats.computePercentileUs(0.5)
+      << " us, p99 " << stats.computePercentileUs(0.99) << " us, max " << stats.computeMaxUs() << " us\n";
+}
+
+}  // namespace voxhap::cli
