@@ -42,4 +42,11 @@ Benchmark table1Benchmark();
 /// The paper's ball-and-socket measure: one turn of the ball at MaxTravel.
 Benchmark rotationBenchmark();
 
+/// Frame time against pointshell size (10^4 … 10^7 points), coherent and brute force.
+Benchmark scalingBenchmark();
+
+/// Time against error: gap and force direction over analytic scenes, voxel sizes, bit
+/// widths, geometrical awareness and coherence.
+Benchmark errorBenchmark();
+
 }  // namespace voxhap::cli

@@ -15,9 +15,9 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Every benchmark `voxhap bench` offers, in the order `--help` lists them. The paper's
-/// other measurements (rotation, scaling, extraction, error) join here when written.
+/// other measurements (extraction) join here when written.
 std::vector<Benchmark> benchmarks() {
-  return {table1Benchmark(), rotationBenchmark()};
+  return {table1Benchmark(), rotationBenchmark(), scalingBenchmark(), errorBenchmark()};
 }
 
 const OptionSpec kJsonOption{"json", 0, "", "print one JSON document {\"benchmark\", \"rows\", …} on stdout"};
