@@ -46,4 +46,11 @@ Benchmark rotationBenchmark();
 /// several resolutions, with frame timings, deadlines, contacts and exact penetration.
 Benchmark extractionBenchmark();
 
+/// Frame time against pointshell size (10^4 … 10^7 points), coherent and brute force.
+Benchmark scalingBenchmark();
+
+/// Time against error: gap and force direction over analytic scenes, voxel sizes, bit
+/// widths, geometrical awareness and coherence.
+Benchmark errorBenchmark();
+
 }  // namespace voxhap::cli

@@ -14,10 +14,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Every benchmark `voxhap bench` offers, in the order `--help` lists them. The paper's
-/// other measurements (rotation, scaling, error) join here when written.
+/// Every benchmark `voxhap bench` offers, in the order `--help` lists them.
 std::vector<Benchmark> benchmarks() {
-  return {table1Benchmark(), rotationBenchmark(), extractionBenchmark()};
+  return {table1Benchmark(), rotationBenchmark(), extractionBenchmark(), scalingBenchmark(), errorBenchmark()};
 }
 
 const OptionSpec kJsonOption{"json", 0, "", "print one JSON document {\"benchmark\", \"rows\", …} on stdout"};

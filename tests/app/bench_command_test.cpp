@@ -39,15 +39,14 @@ TEST_F(BenchCommand, IsListedByTheTopLevelHelp) {
   EXPECT_NE(r.out.find("bench"), std::string::npos) << r.out;
 }
 
-TEST_F(BenchCommand, HelpListsTheBenchmarksAndOnlyThoseThatExist) {
+TEST_F(BenchCommand, HelpListsEveryBenchmark) {
   const CliRun r = voxhap({"bench", "--help"});
   EXPECT_EQ(r.exitCode, 0);
   EXPECT_NE(r.out.find("\n  table1 "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n  rotation "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n  extraction "), std::string::npos) << r.out;
-  for (const char* notYet : {"scaling", "error"}) {
-    EXPECT_EQ(r.out.find("\n  " + std::string(notYet)), std::string::npos) << notYet << "\n" << r.out;
-  }
+  EXPECT_NE(r.out.find("\n  scaling "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n  error "), std::string::npos) << r.out;
 }
 
 TEST_F(BenchCommand, UnknownNameExitsTwoListingTheValidNames) {
@@ -157,6 +156,89 @@ TEST_F(BenchCommand, RotationWithTooSmallACapacityMissesEveryDeadlineAndGivesUp)
   EXPECT_TRUE(row.at("rotation_s").is_null());
   EXPECT_EQ(row.at("missed_deadlines"), row.at("frames"));
   EXPECT_EQ(row.at("turned_rad").get<double>(), 0.0);
+}
+
+constexpr const char* kScalingKeys[] = {
+    "points",           "voxel_size_m",       "static_voxel_size_m", "frames",          "compute_p50_us",
+    "compute_p99_us",   "compute_p999_us",    "compute_max_us",      "missed_deadlines", "frames_over_budget",
+    "mean_tested",      "mean_contacts",      "max_contacts",        "mean_travel_scale", "mean_max_travel_m",
+    "brute_frames",     "brute_p50_us",       "speedup",             "build_s"};
+
+// --quick: 10^4 and 10^5 points, 1 s of frames each; a fixed capacity keeps it
+// deterministic in what it tests (not in its timings)
+TEST_F(BenchCommand, ScalingQuickMeasuresTwoShellSizesCoherentAndBruteForce) {
+  const CliRun r = voxhap({"bench", "scaling", "--quick", "--capacity", "1000000", "--json", "--svg", "s.svg"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
+  EXPECT_EQ(j.at("benchmark"), "scaling");
+  const nlohmann::ordered_json& rows = j.at("rows");
+  ASSERT_EQ(rows.size(), 2u) << j.dump(2);
+  for (const nlohmann::ordered_json& row : rows) {
+    ASSERT_EQ(row.size(), std::size(kScalingKeys)) << row.dump();
+    std::size_t k = 0;
+    for (const auto& [key, value] : row.items()) {
+      EXPECT_EQ(key, kScalingKeys[k++]);
+      EXPECT_TRUE(value.is_number()) << key << ": " << row.dump();
+    }
+    EXPECT_EQ(row.at("frames"), 1000);
+    EXPECT_EQ(row.at("missed_deadlines"), 0) << "the capacity is ample";
+    EXPECT_GT(row.at("mean_contacts").get<double>(), 0.0) << "the tile is pressed onto the plate";
+    EXPECT_GT(row.at("mean_tested").get<double>(), 0.0);
+    EXPECT_LE(row.at("mean_travel_scale").get<double>(), 1.0);
+    EXPECT_GE(row.at("compute_p99_us").get<double>(), row.at("compute_p50_us").get<double>());
+    EXPECT_GE(row.at("compute_max_us").get<double>(), row.at("compute_p999_us").get<double>());
+    EXPECT_GT(row.at("brute_p50_us").get<double>(), 0.0);
+  }
+  // the counts aimed at, within the edges' extra points
+  EXPECT_NEAR(rows[0].at("points").get<double>(), 1e4, 0.1e4);
+  EXPECT_NEAR(rows[1].at("points").get<double>(), 1e5, 0.1e5);
+  EXPECT_GT(rows[0].at("voxel_size_m").get<double>(), rows[1].at("voxel_size_m").get<double>());
+  EXPECT_NE(slurp(dir_ / "s.svg").find("<svg"), std::string::npos);
+}
+
+constexpr const char* kErrorKeys[] = {"scene",          "voxel_size_m",    "bits",      "awareness",
+                                      "coherence",      "points",          "compute_p50_us", "gap_m",
+                                      "force_angle_deg", "abs_gap_m",      "gap_over_voxel", "contacts",
+                                      "speed_mps",      "missed_deadlines"};
+
+TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
+  const CliRun r = voxhap({"bench", "error", "--quick", "--json", "--csv", "e.csv", "--svg", "e.svg"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
+  EXPECT_EQ(j.at("benchmark"), "error");
+  const nlohmann::ordered_json& rows = j.at("rows");
+  ASSERT_EQ(rows.size(), 4u) << j.dump(2);
+  for (const nlohmann::ordered_json& row : rows) {
+    ASSERT_EQ(row.size(), std::size(kErrorKeys)) << row.dump();
+    std::size_t k = 0;
+    for (const auto& [key, value] : row.items()) EXPECT_EQ(key, kErrorKeys[k++]);
+    EXPECT_EQ(row.at("bits"), 4);
+    EXPECT_EQ(row.at("awareness"), 1);
+    EXPECT_DOUBLE_EQ(row.at("voxel_size_m").get<double>(), 2e-3);
+    // at rest on the plane: clear of it, by no more than the force layer's reach
+    ASSERT_TRUE(row.at("gap_m").is_number()) << row.dump();
+    EXPECT_GT(row.at("gap_m").get<double>(), 0.0) << row.dump();
+    EXPECT_LT(row.at("gap_m").get<double>(), 3.0 * 2e-3) << row.dump();
+    // the contacts carry the weight straight up
+    ASSERT_TRUE(row.at("force_angle_deg").is_number()) << row.dump();
+    EXPECT_LT(row.at("force_angle_deg").get<double>(), 5.0) << row.dump();
+    EXPECT_GT(row.at("points").get<std::int64_t>(), 0);
+  }
+  EXPECT_EQ(rows[0].at("scene"), "sphere-on-plane");
+  EXPECT_EQ(rows[0].at("coherence"), 1);
+  EXPECT_EQ(rows[1].at("coherence"), 0);
+  EXPECT_EQ(rows[2].at("scene"), "box-on-plane");
+  EXPECT_EQ(lineCount(slurp(dir_ / "e.csv")), 5);
+  EXPECT_NE(slurp(dir_ / "e.svg").find("sphere-on-plane"), std::string::npos);
+}
+
+TEST_F(BenchCommand, ErrorRefusesAnUnknownSceneOrBitWidthBeforeMeasuring) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"bench", "error", "--scene", "teapot"},
+                                               std::vector<std::string>{"bench", "error", "--bits", "3"}}) {
+    const CliRun r = voxhap(args);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
 }
 
 }  // namespace
