@@ -147,13 +147,19 @@ void planFrame(const SimModel& model, SimState& state) {
     }
   }
   CoherenceFrame& plan = state.coherent;
+  const bool missedBefore = plan.deadlineMissed;
   plan = CoherenceFrame{};
   if (!coherent) return;
   plan.capacityTests = model.coherence.capacityTests > 0.0
                            ? model.coherence.capacityTests
                            : model.coherence.testBudgetFraction * model.dtS / state.testCostS;
   const TravelBudget budget = travelScale(plan.capacityTests, mandatory, load);
-  plan.travelScale = budget.scale;
+  // The first frame with more mandatory tests than capacity stops everything (MaxTravel =
+  // 0). If the next is short too, time-criticality is abandoned (paper §5) until it is
+  // not: frames test what full MaxTravel needs however long they take, and count as
+  // missed. Stopped for good, a part pressed onto more contacts than the capacity could
+  // never be pulled free (the seated ball, a tile pressed into a plate).
+  plan.travelScale = budget.deadlineMissed && missedBefore ? 1.0 : budget.scale;
   plan.deadlineMissed = budget.deadlineMissed;
   plan.mandatory = static_cast<std::uint32_t>(mandatory);
   state.missedDeadlines += budget.deadlineMissed ? 1 : 0;

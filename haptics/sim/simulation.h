@@ -52,7 +52,7 @@ struct CoherenceFrame {
   std::uint32_t mandatory = 0;    ///< points and chunks tested whatever the travel
   double capacityTests = 0.0;     ///< n_cap used by Eq. 2
   double travelScale = 1.0;       ///< every object's MaxTravel over its upper bound
-  bool deadlineMissed = false;    ///< more mandatory tests than capacity: nothing moved
+  bool deadlineMissed = false;    ///< more mandatory tests than capacity (see planFrame)
 };
 
 /// Per pair, between the two passes of a frame.
@@ -78,7 +78,9 @@ struct SimState {
   std::vector<std::uint32_t> due;      ///< room for the largest pointshell's indices
   std::vector<std::uint32_t> dueChunks;  ///< room for the largest pointshell's chunks
   CoherenceFrame coherent;             ///< the frame just stepped
-  std::uint64_t missedDeadlines = 0;   ///< frames with more mandatory tests than capacity
+  /// Frames with more mandatory tests than capacity: the first of a run stops every object,
+  /// the rest run at full MaxTravel however long they take.
+  std::uint64_t missedDeadlines = 0;
   /// Online estimate of the time one point test (with its share of forces) takes, s.
   double testCostS = 20e-9;
   /// The force layer in use (collision offsetting, paper §3.2), adjustable between frames

@@ -194,24 +194,34 @@ TEST(Coherence, MaxTravelHoldsEveryPointOfTheObject) {
   EXPECT_GT(state.travelLimitedFrames, 100u);
 }
 
-TEST(Coherence, MoreMandatoryPointsThanCapacityStopsTheObjectAndCountsTheMiss) {
+TEST(Coherence, MoreMandatoryPointsThanCapacityStopsTheObjectOnceThenAbandonsTimeCriticality) {
   Scene scene = sphereOverPlate();
-  // start the ball resting in the force layer
+  // start the ball resting in the force layer; its handle lifts it 5 mm
   scene.objects[1] = test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
     appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, kRadius)), kRadius, 4);
   });
   const SimModel model = coupledModel(scene, 10.0);
   SimState state = makeSimState(model);
-  HandleInput handles[1] = {{Pose{}, {}}};
+  HandleInput handles[1] = {{Pose{glm::dvec3(0.0, 0.0, 0.005), identityQuat()}, {}}};
   const Pose start = objectPose(model, state, 0);
-  for (int frame = 0; frame < 5; ++frame) step(model, state, handles);
+  step(model, state, handles);
+  // the first frame short of capacity: every mandatory point tested, nothing moves
   EXPECT_TRUE(state.coherent.deadlineMissed);
-  EXPECT_EQ(state.missedDeadlines, 5u);
+  EXPECT_EQ(state.missedDeadlines, 1u);
   EXPECT_EQ(state.last[0].maxTravelM, 0.0);
   EXPECT_EQ(objectPose(model, state, 0).position, start.position);
-  // every mandatory point was still tested
   EXPECT_EQ(state.coherent.tested, state.coherent.mandatory);
   EXPECT_GT(state.last[0].contacts, 0u);
+  // the next ones still short: full MaxTravel, however long they take, counted missed
+  step(model, state, handles);
+  EXPECT_TRUE(state.coherent.deadlineMissed);
+  EXPECT_EQ(state.missedDeadlines, 2u);
+  EXPECT_EQ(state.last[0].maxTravelM, 0.5 * kVoxel);
+  for (int frame = 0; frame < 100; ++frame) step(model, state, handles);
+  // pulled free: no contact left, deadlines met again
+  EXPECT_FALSE(state.coherent.deadlineMissed);
+  EXPECT_EQ(state.last[0].contacts, 0u);
+  EXPECT_GT(objectPose(model, state, 0).position.z, start.position.z + 0.002);
 }
 
 TEST(Coherence, AnObjectOutOfRangeCostsNoPointTests) {
