@@ -9,6 +9,7 @@
 
 #include "app/cache_options.h"
 #include "app/cli/command.h"
+#include "haptics/core/error.h"
 #include "haptics/voxel/voxel_cache.h"
 
 namespace voxhap::cli {
@@ -37,7 +38,23 @@ SceneModelOptions sceneModelOptionsFromArgs(const ParsedArgs& args, Console& con
     options.sim.coherence.capacityTests = static_cast<double>(parseUnsigned(*capacity, "capacity"));
     if (options.sim.coherence.capacityTests < 1) throw UsageError("--capacity wants at least one point test");
   }
-  useVoxelCache(options, voxelCacheOptions(args), console);
+  const CacheOptions cache = voxelCacheOptions(args);
+  useVoxelCache(options, cache, console);
+  if (const auto memory = args.value("voxel-memory")) {
+    const std::uint64_t budget = parseBytes(*memory, "voxel-memory");
+    Console* warnings = &console;
+    options.budgetedVoxelizeFn = [cache, budget, warnings](std::span<const SceneObject* const> objects,
+                                                           const VoxelizeOptions& o, const ProgressFn& progress) {
+      BudgetedVoxmap v = voxelizeWithinBudget(objects, o, cache, budget, progress);
+      for (const std::string& w : v.warnings) warnings->warning(w);
+      if (v.pager) {
+        warnings->note("static voxels: " + std::to_string(v.wordBytes >> 20) + " MiB of words paged through " +
+                       std::to_string((v.pager->slotCount() * v.voxmap.pagedArrays().blockBytes) >> 20) +
+                       " MiB of memory");
+      }
+      return v;
+    };
+  }
   return options;
 }
 
@@ -107,6 +124,11 @@ void runFrames(const SimModel& model, SimState& state, std::span<HapticDevice* c
   std::vector<HandleInput> handles(model.objects.size());
   stats.computeUs.reserve(stats.computeUs.size() + frames);
   for (std::uint64_t f = 0; f < frames; ++f) {
+    if (state.stopped) {
+      throw Error("stopped at " + std::to_string(state.timeS) + " s: the voxels the frame needed were not read from "
+                  "the cache file within " + std::to_string(static_cast<int>(kMaxSuspensionS)) +
+                  " s (paper §5.3); allow more --voxel-memory or use a faster disk");
+    }
     const auto start = std::chrono::steady_clock::now();
     stepWithDevices(model, state, devices, handles);
     const double us =
@@ -130,6 +152,9 @@ nlohmann::ordered_json frameStatsJson(const FrameStats& stats, const SimState& s
           {"missed_deadlines", state.missedDeadlines},
           {"frames_over_budget", stats.framesOverBudget},
           {"pairs_skipped", state.pairsSkipped},
+          {"suspensions", state.suspensions.count},
+          {"suspended_frames", state.suspensions.frames},
+          {"longest_suspension_s", state.suspensions.longestS},
           {"travel_limited_frames", state.travelLimitedFrames},
           {"compute_us",
            {{"p50", stats.computePercentileUs(0.5)},
@@ -144,7 +169,8 @@ void printFrameStats(std::ostream& out, const FrameStats& stats, const SimState&
       << (coherence ? "time-critical" : "brute force") << "; " << stats.meanDrifted() << " of them drifting), "
       << stats.meanChunkTests() << " chunk tests\nMaxTravel       " << stats.meanTravelScale()
       << " of its bound on average\nmissed deadlines " << state.missedDeadlines << "\nover 1 ms        "
-      << stats.framesOverBudget << " frames\ncompute         p50 " << stats.computePercentileUs(0.5)
+      << stats.framesOverBudget << " frames\nsuspensions     " << state.suspensions.count << " ("
+      << state.suspensions.frames << " frames, longest " << state.suspensions.longestS << " s)\ncompute         p50 " << stats.computePercentileUs(0.5)
       << " us, p99 " << stats.computePercentileUs(0.99) << " us, max " << stats.computeMaxUs() << " us\n";
 }
 

@@ -81,6 +81,26 @@ std::uint64_t parseUnsigned(const std::string& text, const std::string& optionNa
   return value;
 }
 
+std::uint64_t parseBytes(const std::string& text, const std::string& optionName) {
+  auto fail = [&]() -> std::uint64_t {
+    throw UsageError("--" + optionName + " wants a size such as 2GiB, 512MiB or 65536 (bytes), not '" + text + "'");
+  };
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (text.empty() || ec != std::errc()) return fail();
+  std::string unit(ptr, end);
+  unit.erase(0, unit.find_first_not_of(' '));
+  double scale = 0.0;
+  if (unit.empty() || unit == "B") scale = 1.0;
+  if (unit == "K" || unit == "KiB") scale = 1024.0;
+  if (unit == "M" || unit == "MiB") scale = 1024.0 * 1024.0;
+  if (unit == "G" || unit == "GiB") scale = 1024.0 * 1024.0 * 1024.0;
+  const double bytes = value * scale;
+  if (!(bytes >= 1.0) || !(bytes < 9.2e18)) return fail();
+  return static_cast<std::uint64_t>(bytes);
+}
+
 double parseLengthM(const std::string& text, const std::string& optionName, LengthSign sign) {
   const std::string example = sign == LengthSign::Positive ? "0.35mm, 2.5 mm or 0.00035 (metres)"
                                                            : "0.012, 12mm or -3.5 mm";

@@ -51,6 +51,12 @@ ParsedArgs parseArgs(const std::vector<std::string>& args, const std::vector<Opt
 /// Throws UsageError on anything else (sign, fraction, junk, overflow).
 std::uint64_t parseUnsigned(const std::string& text, const std::string& optionName);
 
+/// Parses a size in bytes for the option named in messages: a decimal number, optionally
+/// followed (spaces allowed) by B, KiB, MiB or GiB (also K, M, G; powers of 1024), e.g.
+/// "2GiB", "512 MiB", "1.5G", "65536". Throws UsageError on anything else, on a size
+/// below one byte or beyond 2^63.
+std::uint64_t parseBytes(const std::string& text, const std::string& optionName);
+
 /// Whether parseLengthM accepts zero and negative lengths.
 enum class LengthSign { Positive, Any };
 

@@ -163,6 +163,7 @@ Command demoCommand() {
       {"voxel-size", 0, "LENGTH", "voxel size of the static gear (default 2.5mm)"},
       {"point-spacing", 0, "LENGTH", "point spacing of the actuator (default 1mm)"},
       {"capacity", 0, "N", "point tests per frame (default: measured online)"},
+      {"voxel-memory", 0, "SIZE", "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache"},
       {"brute-force", 0, "", "test every point every frame (no time-critical sampling), for comparison"},
       {"duration", 0, "SECONDS", "simulated time (default: the whole script, 18 s)"},
       {"penetration-every", 0, "N", "measure the exact penetration every N frames (default 1)"},

@@ -127,6 +127,7 @@ Command simulateCommand() {
       {"no-awareness", 0, "", "turn geometrical awareness off (every point samples the surface field)"},
       {"pre-contact-damping", 0, "", "damp points approaching in the layer just outside the force layer"},
       {"capacity", 0, "N", "point tests per frame (default: measured online)"},
+      {"voxel-memory", 0, "SIZE", "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache"},
       {"brute-force", 0, "", "test every point every frame (no time-critical sampling), for comparison"},
       {"no-drifting", 0, "", "look every due point up in the voxmap (no point drifting, paper §5.2)"},
       {"duration", 0, "SECONDS", "simulated time (default: the longest script)"},

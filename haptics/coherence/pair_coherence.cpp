@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "haptics/coherence/max_travel.h"
@@ -66,7 +67,16 @@ int PairCoherence::chunkClass(const Voxmap& voxmap, const glm::vec3& voxelOfCent
   return std::min(kChunkQueues - 1, static_cast<int>(gapVoxels / kChunkEdgeVoxels));
 }
 
-void PairCoherence::testChunk(std::uint32_t chunk, int from, int to) noexcept {
+void PairCoherence::askAround(VoxelPager* pager, const glm::vec3& voxel, float radiusVoxels) noexcept {
+  if (!pager) return;
+  const auto chunkOf = [](float v) { return static_cast<int>(std::floor(v / kChunkEdgeVoxels)); };
+  const glm::vec3 lo = voxel - radiusVoxels;
+  const glm::vec3 hi = voxel + radiusVoxels;
+  pager->request({chunkOf(lo.x), chunkOf(lo.y), chunkOf(lo.z)}, {chunkOf(hi.x), chunkOf(hi.y), chunkOf(hi.z)});
+}
+
+void PairCoherence::testChunk(std::uint32_t chunk, int from, int to, const glm::vec3& voxelOfCentroid,
+                              VoxelPager* pager) noexcept {
   PointQueues& chunks = chunks_.queues();
   const std::uint32_t first = chunkBegin_[chunk];
   const std::uint32_t last = chunkBegin_[chunk + 1];
@@ -76,22 +86,29 @@ void PairCoherence::testChunk(std::uint32_t chunk, int from, int to) noexcept {
     chunks.move(chunk, from, to);
   } else if (to >= kCollapsedMin) {
     chunks.move(chunk, from, to);
-  } else {  // disgorged: every point still reads far
+  } else {  // disgorged: every point still reads far; its voxels are wanted soon
     points_.queues().insertRange(first, last, queueForValue(kValueFar, forceLayer_, maxValue_));
+    askAround(pager, voxelOfCentroid, chunkRadiusVoxels_[chunk] + 2.0f * kChunkEdgeVoxels);
     if (drifting_) std::fill(lookupQueue_.begin() + first, lookupQueue_.begin() + last, std::uint8_t{0});
     chunks.move(chunk, from, kChunkInRange);
   }
 }
 
 void PairCoherence::sortAll(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                            const std::array<std::uint8_t, 3>& fieldShifts) noexcept {
+                            const std::array<std::uint8_t, 3>& fieldShifts, VoxelPager* pager) {
   points_.queues().clear();
   chunks_.queues().assignAll(kChunkTestNow);
   for (std::uint32_t c = 0; c < shell.chunkCount(); ++c) {
-    const int to = chunkClass(voxmap, transform.apply(shell.chunkCentroidsLocal[c]), c);
+    const glm::vec3 centroid = transform.apply(shell.chunkCentroidsLocal[c]);
+    const int to = chunkClass(voxmap, centroid, c);
     if (to >= kCollapsedMin) {
       chunks_.queues().move(c, kChunkTestNow, to);
       continue;
+    }
+    if (pager) {
+      const glm::vec3 reach(chunkRadiusVoxels_[c] + kChunkEdgeVoxels);
+      const auto chunkOf = [](const glm::vec3& v) { return glm::ivec3(glm::floor(v / float(kChunkEdgeVoxels))); };
+      pager->makeResident(chunkOf(centroid - reach), chunkOf(centroid + reach));
     }
     chunks_.queues().move(c, kChunkTestNow, kChunkInRange);
     for (std::uint32_t p = chunkBegin_[c]; p < chunkBegin_[c + 1]; ++p) {
@@ -152,13 +169,14 @@ CoherenceLoad PairCoherence::load() const noexcept {
 
 std::uint32_t PairCoherence::updateChunks(const Pointshell& shell, const Voxmap& voxmap,
                                           const VoxelTransform& transform, double relativeTravelM,
-                                          std::span<std::uint32_t> scratch) noexcept {
+                                          std::span<std::uint32_t> scratch, VoxelPager* pager) noexcept {
   std::uint32_t tests = 0;
   for (int q = 0; q < kChunkQueues; ++q) {
     const std::uint32_t n = chunks_.collect(q, chunkDistanceM(q), relativeTravelM, lastTravelM_, scratch);
     for (std::uint32_t i = 0; i < n; ++i) {
       const std::uint32_t c = scratch[i];
-      testChunk(c, q, chunkClass(voxmap, transform.apply(shell.chunkCentroidsLocal[c]), c));
+      const glm::vec3 centroid = transform.apply(shell.chunkCentroidsLocal[c]);
+      testChunk(c, q, chunkClass(voxmap, centroid, c), centroid, pager);
     }
     tests += n;
   }
@@ -179,7 +197,7 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
                                              const VoxelTransform& transform,
                                              const std::array<std::uint8_t, 3>& fieldShifts,
                                              std::uint8_t sampledLayer, std::span<const std::uint32_t> due,
-                                             PointContact* contacts) noexcept {
+                                             PointContact* contacts, VoxelPager* pager) noexcept {
   PointQueues& queues = points_.queues();
   Tested tested;
   std::uint32_t at = 0;
@@ -200,6 +218,13 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
       }
       const PointSample sample =
           sampleAt(voxmap, voxel, fieldShifts[static_cast<std::size_t>(shell.features[point])]);
+      if (sample.missing) {  // tested again next frame, once its chunk is (asked to be) resident
+        ++tested.missing;
+        queues.move(point, q, 1);
+        if (drifting_) lookupQueue_[point] = 0;
+        askAround(pager, voxel, kChunkEdgeVoxels);
+        continue;
+      }
       // value − 1 wraps far (0) to 255, so one compare keeps [1, sampledLayer]
       if (static_cast<std::uint8_t>(sample.value - 1u) < sampledLayer) {
         contacts[tested.contacts++] = {point, sample.ijkVoxel, sample.value};

@@ -42,6 +42,7 @@
 
 #include "haptics/coherence/swept_queues.h"
 #include "haptics/collide/point_sampler.h"
+#include "haptics/voxel/voxel_pager.h"
 
 namespace voxhap {
 
@@ -62,9 +63,10 @@ public:
   const PointQueues& chunkQueues() const noexcept { return chunks_.queues(); }
   std::uint8_t forceLayer() const noexcept { return forceLayer_; }
 
-  /// Tests every chunk and every point of the chunks in range and queues them (load time).
+  /// Tests every chunk and every point of the chunks in range and queues them (load
+  /// time); with a `pager` (paged voxmap, else null) it first makes their voxels resident.
   void sortAll(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-               const std::array<std::uint8_t, 3>& fieldShifts) noexcept;
+               const std::array<std::uint8_t, 3>& fieldShifts, VoxelPager* pager);
   /// A frame out of range in which the pair may move `relativeTravelM`.
   void skipFrame(double relativeTravelM) noexcept;
   /// Makes every point in range mandatory, to be re-sorted by its next test.
@@ -78,10 +80,11 @@ public:
   bool onlyCollapsed() const noexcept;
 
   /// Tests the due chunks for a relative travel of at most `relativeTravelM` this frame;
-  /// disgorges and collapses chunks. `scratch` has room for the chunk count. Returns the
-  /// chunk tests.
+  /// disgorges and collapses chunks. `scratch` has room for the chunk count. A disgorged
+  /// chunk asks `pager` (null: the voxmap is whole) for the voxmap chunks around it
+  /// (paper §5.3). Returns the chunk tests.
   std::uint32_t updateChunks(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                             double relativeTravelM, std::span<std::uint32_t> scratch) noexcept;
+                             double relativeTravelM, std::span<std::uint32_t> scratch, VoxelPager* pager) noexcept;
 
   /// Collects the due points into `due` (room for the pointshell); returns how many.
   std::uint32_t collectDue(double relativeTravelM, std::span<std::uint32_t> due) noexcept;
@@ -90,12 +93,14 @@ public:
   struct Tested {
     std::uint32_t contacts = 0;  ///< written to `contacts`
     std::uint32_t drifted = 0;   ///< tests that skipped the lookup
+    std::uint32_t missing = 0;   ///< lookups of paged-out chunks (the frame must be suspended)
   };
   /// Tests the points collectDue() returned; writes those whose value lies in
-  /// [1, sampledLayer] to `contacts` (room for due.size()).
+  /// [1, sampledLayer] to `contacts` (room for due.size()). A point whose chunk of the
+  /// voxmap is paged out becomes mandatory and asks `pager` for it.
   Tested testDue(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                  const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
-                 std::span<const std::uint32_t> due, PointContact* contacts) noexcept;
+                 std::span<const std::uint32_t> due, PointContact* contacts, VoxelPager* pager) noexcept;
 
   /// Call at the end of a frame in range with the travel it allowed.
   void endFrame(double relativeTravelM) noexcept { lastTravelM_ = relativeTravelM; }
@@ -104,8 +109,11 @@ private:
   /// What a test of `chunk` finds with its centroid at `voxelOfCentroid` (voxel coordinates):
   /// 0 (in range) or the whole chunks of its gap, at most the last chunk queue.
   int chunkClass(const Voxmap& voxmap, const glm::vec3& voxelOfCentroid, std::uint32_t chunk) const noexcept;
-  /// Moves `chunk` from chunk queue `from` to what its test found, `to`.
-  void testChunk(std::uint32_t chunk, int from, int to) noexcept;
+  /// Moves `chunk` from chunk queue `from` to what its test found, `to`; a disgorged chunk
+  /// whose centroid lies at `voxelOfCentroid` asks `pager` for the voxels around it.
+  void testChunk(std::uint32_t chunk, int from, int to, const glm::vec3& voxelOfCentroid, VoxelPager* pager) noexcept;
+  /// Asks `pager` for the voxmap chunks within `radiusVoxels` of `voxel`.
+  static void askAround(VoxelPager* pager, const glm::vec3& voxel, float radiusVoxels) noexcept;
   double chunkDistanceM(int q) const noexcept;
   double pointDistanceM(int q) const noexcept;
 

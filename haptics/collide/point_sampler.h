@@ -43,13 +43,16 @@ struct VoxelTransform {
 struct PointSample {
   glm::ivec3 ijkVoxel;  ///< voxel of the voxmap the point fell in
   std::uint8_t value;   ///< the field value read there (0 … 2^bits − 1)
+  bool missing;         ///< its chunk is paged out (value meaningless)
 };
 
 /// Reads the field at `shift` where voxel coordinates `voxelCoords` fall.
 inline PointSample sampleAt(const Voxmap& voxmap, const glm::vec3& voxelCoords, std::uint8_t shift) noexcept {
   const glm::ivec3 ijk(static_cast<int>(std::floor(voxelCoords.x)), static_cast<int>(std::floor(voxelCoords.y)),
                        static_cast<int>(std::floor(voxelCoords.z)));
-  return {ijk, static_cast<std::uint8_t>((voxmap.word(ijk) >> shift) & voxmap.encoding().fieldMask())};
+  const VoxelWord word = voxmap.word(ijk);
+  return {ijk, static_cast<std::uint8_t>((word >> shift) & voxmap.encoding().fieldMask()),
+          word == Voxmap::kMissingWord};
 }
 
 /// Tests point `index` of `shell`; `fieldShifts` comes from fieldShiftsByFeature. Inline:

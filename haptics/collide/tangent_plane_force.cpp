@@ -9,18 +9,27 @@ namespace voxhap {
 namespace {
 
 /// Unit direction, voxmap frame, in which the field at `shift` falls around `ijk`
-/// (far counts as one more than the largest value); zero where it is flat.
-glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift) {
+/// (far counts as one more than the largest value); zero where it is flat. A neighbour
+/// paged out (paged voxmap) counts as the centre and adds one to `missing`.
+glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift, std::uint32_t& missing) {
   const VoxelEncoding& e = voxmap.encoding();
   auto valueAt = [&](const glm::ivec3& v) {
-    const auto value = static_cast<int>((voxmap.word(v) >> shift) & e.fieldMask());
+    const VoxelWord word = voxmap.word(v);
+    if (word == Voxmap::kMissingWord) {
+      ++missing;
+      return -1;
+    }
+    const auto value = static_cast<int>((word >> shift) & e.fieldMask());
     return value == kValueFar ? e.maxValue() + 1 : value;
   };
+  const int centre = valueAt(ijk);
   glm::dvec3 g(0.0);
   for (int axis = 0; axis < 3; ++axis) {
     glm::ivec3 step(0);
     step[axis] = 1;
-    g[axis] = valueAt(ijk - step) - valueAt(ijk + step);
+    const int below = valueAt(ijk - step);
+    const int above = valueAt(ijk + step);
+    g[axis] = (below < 0 ? centre : below) - (above < 0 ? centre : above);
   }
   const double length = glm::length(g);
   return length > 0.0 ? g / length : g;
@@ -34,9 +43,9 @@ glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8
 /// the side of a part resting on a plate would push sideways along its own normal). An
 /// edge (edge points): between the two.
 glm::dvec3 pushDirectionOf(const Voxmap& voxmap, const PointContact& contact, PointFeature feature, bool aware,
-                           std::uint8_t fieldShift, const glm::dvec3& n) {
+                           std::uint8_t fieldShift, const glm::dvec3& n, std::uint32_t& missing) {
   if (feature == PointFeature::Surface && aware) return n;
-  glm::dvec3 g = fallDirection(voxmap, contact.ijkVoxel, fieldShift);
+  glm::dvec3 g = fallDirection(voxmap, contact.ijkVoxel, fieldShift, missing);
   if (g == glm::dvec3(0.0)) g = n;
   if (feature != PointFeature::Edge || !aware) return g;
   const glm::dvec3 between = n + g;
@@ -84,7 +93,7 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     const glm::dvec3 n = shellToVoxmapRotation * glm::dvec3(shell.normalsLocal[c.point]);
     const PointFeature feature = shell.features[c.point];
     const glm::dvec3 pushDirection = pushDirectionOf(voxmap, c, feature, params.geometricalAwareness,
-                                                     shifts[static_cast<std::size_t>(feature)], n);
+                                                     shifts[static_cast<std::size_t>(feature)], n, out.missingVoxels);
     const bool beforeContact = c.value > params.forceLayer;
     const double depth = beforeContact ? 0.0
                                        : glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +

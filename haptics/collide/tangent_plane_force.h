@@ -58,6 +58,7 @@ struct PairWrench {
   std::uint32_t contactPoints = 0;       ///< contacts at or inside the force layer
   std::uint32_t pushingPoints = 0;       ///< contacts pushing (depth > 0, or damping before contact)
   double maxDepthM = 0.0;                ///< largest depth d, m
+  std::uint32_t missingVoxels = 0;       ///< neighbour lookups of a paged voxmap that found it paged out
 };
 
 /// Sums the tangent-plane forces of `contacts` (from samplePoints with the same

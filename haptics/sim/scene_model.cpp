@@ -46,9 +46,19 @@ SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& mov
   voxelOptions.encoding = VoxelEncoding::forBits(options.bitsPerField);
   voxelOptions.buildFeatureFields = options.sim.geometricalAwareness;
   std::optional<Voxmap> staticVoxmap;
+  std::shared_ptr<VoxelPager> staticPager;
   if (!fixed.empty()) {
     voxelOptions.voxelSizeM = options.staticVoxelSizeM;
-    staticVoxmap = options.voxelizeFn(fixed, voxelOptions, stage(0));
+    if (options.budgetedVoxelizeFn) {
+      BudgetedVoxmap budgeted = options.budgetedVoxelizeFn(fixed, voxelOptions, stage(0));
+      staticVoxmap = std::move(budgeted.voxmap);
+      staticPager = std::move(budgeted.pager);
+    } else {
+      staticVoxmap = options.voxelizeFn(fixed, voxelOptions, stage(0));
+    }
+  }
+  if (staticPager && !options.sim.coherence.enabled) {
+    throw Error("paging the static voxels within a memory budget needs time-critical sampling (not brute force)");
   }
 
   std::vector<MovingObjectModel> objects;
@@ -70,7 +80,9 @@ SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& mov
     object.coupled = true;
     objects.push_back(std::move(object));
   }
-  return makeSimModel(std::move(objects), std::move(staticVoxmap), options.sim);
+  SimModel model = makeSimModel(std::move(objects), std::move(staticVoxmap), options.sim);
+  model.staticPager = std::move(staticPager);  // the voxmap's arrays it fills moved with it
+  return model;
 }
 
 }  // namespace voxhap

@@ -12,6 +12,7 @@
 #include "haptics/pointshell/pointshell.h"
 #include "haptics/scene/scene.h"
 #include "haptics/sim/sim_model.h"
+#include "haptics/voxel/voxel_cache.h"
 #include "haptics/voxel/voxelizer.h"
 
 namespace voxhap {
@@ -40,6 +41,11 @@ struct SceneModelOptions {
   int pointFreeLayer = 0;
   VoxelizeObjectsFn voxelizeFn = voxelizeObjects;
   PointshellFn pointshellFn = pointshellOf;
+  /// When set, the static environment comes from here instead of voxelizeFn: whole, or
+  /// paged within a memory budget (voxel_cache.h, voxelizeWithinBudget).
+  std::function<BudgetedVoxmap(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
+                               const ProgressFn& progress)>
+      budgetedVoxelizeFn;
 };
 
 /// The model of `scene` with `movingNames` moving (each coupled to a handle) and every

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "haptics/dynamics/rigid_body.h"
 #include "haptics/dynamics/virtual_coupling.h"
 #include "haptics/pointshell/pointshell.h"
+#include "haptics/voxel/voxel_pager.h"
 #include "haptics/voxel/voxmap.h"
 
 namespace voxhap {
@@ -85,10 +87,18 @@ struct SimModel {
   double dtS = 1e-3;                  ///< frame period, s
   glm::dvec3 gravityWorld{0.0};       ///< m/s²; zero: parts are held, not dropped
   std::optional<Voxmap> staticVoxmap;  ///< world frame; none: nothing static collides
+  /// Pages the static voxmap's words when they exceed the voxel memory budget (paper
+  /// §5.3); null when it is whole.
+  std::shared_ptr<VoxelPager> staticPager;
   std::vector<MovingObjectModel> objects;
   std::vector<PairModel> pairs;
   DeviceLimits deviceLimits;
   CoherenceOptions coherence;
+
+  /// The pager of the pair's voxmap, or null when it is whole.
+  VoxelPager* pagerOf(const PairModel& pair) const {
+    return pair.voxmapObject == kStaticEnvironment ? staticPager.get() : nullptr;
+  }
 
   const Voxmap& voxmapOf(const PairModel& pair) const {
     return pair.voxmapObject == kStaticEnvironment ? *staticVoxmap

@@ -75,7 +75,7 @@ SimState makeSimState(const SimModel& model) {
                                        motionOf(model, state, pair.shellObject).poseWorld);
     if (inRange(shellObject, shellToVoxmap, voxmap.grid())) {
       coherence.sortAll(shellObject.shell, voxmap, VoxelTransform::make(shellToVoxmap, voxmap.grid()),
-                        pair.fieldShifts);
+                        pair.fieldShifts, model.pagerOf(pair));
     } else {
       coherence.skipFrame(0.0);
     }
@@ -166,8 +166,9 @@ void planFrame(const SimModel& model, SimState& state) {
 }
 
 /// Step 2 for one pair in range: its contacts, in state.scratch; returns how many, and
-/// adds its tests to `tested`.
-std::uint32_t findContacts(const SimModel& model, SimState& state, std::size_t p, std::uint32_t& tested) {
+/// adds its tests to `tested` and its lookups of paged-out voxels to `missing`.
+std::uint32_t findContacts(const SimModel& model, SimState& state, std::size_t p, std::uint32_t& tested,
+                           std::uint32_t& missing) {
   const PairModel& pair = model.pairs[p];
   const Pointshell& shell = model.objects[static_cast<std::size_t>(pair.shellObject)].shell;
   const Voxmap& voxmap = model.voxmapOf(pair);
@@ -182,25 +183,49 @@ std::uint32_t findContacts(const SimModel& model, SimState& state, std::size_t p
   }
   PairCoherence& coherence = state.coherence[p];
   const double travelM = state.coherent.travelScale * state.pairFrames[p].relativeTravelBoundM;
-  state.coherent.chunkTests += coherence.updateChunks(shell, voxmap, transform, travelM, state.dueChunks);
+  VoxelPager* pager = model.pagerOf(pair);
+  state.coherent.chunkTests += coherence.updateChunks(shell, voxmap, transform, travelM, state.dueChunks, pager);
   const std::uint32_t due = coherence.collectDue(travelM, state.due);
   tested += due;
   const PairCoherence::Tested t = coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
-                                                   std::span(state.due.data(), due), state.scratch.data());
+                                                   std::span(state.due.data(), due), state.scratch.data(), pager);
   state.coherent.drifted += t.drifted;
+  missing += t.missing;
   coherence.endFrame(travelM);
   return t.contacts;
+}
+
+/// Paper §5.3: a frame that needed voxels still paged out moves nothing and sends no
+/// force; past kMaxSuspensionS of suspension in a row the run stops.
+void suspendOrResume(SimState& state, bool suspend, std::chrono::steady_clock::time_point now) {
+  Suspensions& s = state.suspensions;
+  if (!suspend) {
+    s.active = false;
+    return;
+  }
+  if (!s.active) {
+    s.active = true;
+    s.since = now;
+    ++s.count;
+  }
+  ++s.frames;
+  const double seconds = std::chrono::duration<double>(now - s.since).count();
+  s.longestS = std::max(s.longestS, seconds);
+  if (seconds > kMaxSuspensionS) state.stopped = true;
 }
 
 }  // namespace
 
 void step(const SimModel& model, SimState& state, std::span<const HandleInput> handles) noexcept {
+  if (state.stopped) return;
+  if (model.staticPager) model.staticPager->beginFrame();
   const std::size_t n = model.objects.size();
   for (ObjectFrame& f : state.last) f = ObjectFrame{};
   planFrame(model, state);
 
   const auto started = std::chrono::steady_clock::now();
   std::uint32_t testedInFrame = 0;
+  std::uint32_t missing = 0;
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     const PairModel& pair = model.pairs[p];
     if (!state.pairFrames[p].inRange) {
@@ -210,7 +235,7 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
       continue;
     }
     std::uint32_t tested = 0;
-    const std::uint32_t found = findContacts(model, state, p, tested);
+    const std::uint32_t found = findContacts(model, state, p, tested, missing);
     testedInFrame += tested;
     ContactParams params = pair.params;
     params.forceLayer = state.forceLayer;
@@ -219,6 +244,7 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
                                             motionOf(model, state, pair.shellObject),
                                             motionOf(model, state, pair.voxmapObject),
                                             std::span(state.scratch.data(), found));
+    missing += w.missingVoxels;
     ObjectFrame& s = state.last[static_cast<std::size_t>(pair.shellObject)];
     s.contactForceWorld += w.forceOnShellWorld;
     s.contactTorqueWorld += w.torqueOnShellWorld;
@@ -234,6 +260,11 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
     }
   }
   state.coherent.tested = testedInFrame;
+  suspendOrResume(state, missing > 0, std::chrono::steady_clock::now());
+  if (state.suspensions.active) {
+    state.coherent.travelScale = 0.0;
+    for (ObjectFrame& f : state.last) f.contactForceWorld = f.contactTorqueWorld = glm::dvec3(0.0);
+  }
   // the capacity measured online: a smoothed cost per test, from frames with enough tests
   // to outweigh the fixed cost of a pair
   constexpr std::uint32_t kMeasuredTests = 1000;
@@ -254,7 +285,7 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
                                 handles[i].velocity.angularWorld, object.body, body);
       force += coupling.forceWorld;
       torque += coupling.torqueWorld;
-      f.feedback = deviceFeedback(coupling, model.deviceLimits);
+      if (!state.suspensions.active) f.feedback = deviceFeedback(coupling, model.deviceLimits);
     }
     const RigidBodyState before = body;
     integrate(object.body, body, force, torque, model.dtS);

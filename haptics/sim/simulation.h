@@ -15,6 +15,7 @@
 /// All buffers live in SimState, sized by makeSimState: step() never allocates, locks,
 /// throws or prints. Deterministic: same model, state and handles, same bits.
 
+#include <chrono>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -55,6 +56,19 @@ struct CoherenceFrame {
   bool deadlineMissed = false;    ///< more mandatory tests than capacity (see planFrame)
 };
 
+/// The longest a run of frames may stay suspended waiting for paged voxels, s (paper §5.3).
+inline constexpr double kMaxSuspensionS = 2.0;
+
+/// Frames suspended because voxels they needed were still paged out (paper §5.3): nothing
+/// moves and the devices feel no force until the pager has read them.
+struct Suspensions {
+  bool active = false;             ///< the frame just stepped was suspended
+  std::chrono::steady_clock::time_point since;  ///< when the current suspension began
+  std::uint64_t count = 0;         ///< suspensions (runs of suspended frames)
+  std::uint64_t frames = 0;        ///< suspended frames in all
+  double longestS = 0.0;           ///< longest suspension so far, s (wall clock)
+};
+
 /// Per pair, between the two passes of a frame.
 struct PairFrame {
   VoxelTransform transform;
@@ -83,6 +97,9 @@ struct SimState {
   std::uint64_t missedDeadlines = 0;
   /// Online estimate of the time one point test (with its share of forces) takes, s.
   double testCostS = 20e-9;
+  Suspensions suspensions;
+  /// A suspension outlasted kMaxSuspensionS: the run is over and step() does nothing more.
+  bool stopped = false;
   /// The force layer in use (collision offsetting, paper §3.2), adjustable between frames
   /// with setForceLayer; starts at the model's.
   std::uint8_t forceLayer = kDefaultForceLayer;

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstddef>
 #include <cstring>
+#include <vector>
 
 #include "haptics/core/error.h"
 
@@ -90,6 +91,17 @@ CacheFileReader::CacheFileReader(const std::filesystem::path& path, CacheKind ki
                          " bytes, the header says " + std::to_string(expected) + ")");
   }
   remaining_ = header.payloadBytes;
+  payloadBytes_ = header.payloadBytes;
+  payloadStart_ = sizeof header;
+}
+
+void CacheFileReader::skip(std::uint64_t bytes) {
+  std::vector<char> buffer(std::min<std::uint64_t>(bytes, std::uint64_t{16} << 20));
+  while (bytes > 0) {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(bytes, buffer.size()));
+    read(buffer.data(), n);
+    bytes -= n;
+  }
 }
 
 void CacheFileReader::read(void* data, std::size_t bytes) {

@@ -107,6 +107,12 @@ public:
     return values;
   }
 
+  /// Reads past `bytes` payload bytes, checksumming them without keeping them (a paged
+  /// voxmap's words, read again later by offset).
+  void skip(std::uint64_t bytes);
+  /// Where the next payload byte lies in the file, bytes from its start.
+  std::uint64_t fileOffset() const { return payloadStart_ + (payloadBytes_ - remaining_); }
+
   /// Checks that the whole payload was read and that its checksum matches.
   void finish();
 
@@ -114,6 +120,8 @@ private:
   std::ifstream in_;
   ContentHash checksum_;
   std::uint64_t remaining_ = 0;
+  std::uint64_t payloadBytes_ = 0;
+  std::uint64_t payloadStart_ = 0;
 };
 
 }  // namespace voxhap

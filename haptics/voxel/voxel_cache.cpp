@@ -1,5 +1,7 @@
 #include "haptics/voxel/voxel_cache.h"
 
+#include <optional>
+
 #include <array>
 #include <chrono>
 #include <functional>
@@ -192,21 +194,116 @@ ProgressFn stage(const ProgressFn& progress, double begin, double end) {
   return [progress, begin, end](double f) { progress(begin + (end - begin) * f); };
 }
 
-}  // namespace
-
-CachedVoxelization voxelizeCached(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
-                                  const CacheOptions& cache, const ProgressFn& progress) {
+Digest128 voxmapKey(std::span<const SceneObject* const> objects, const VoxelizeOptions& options) {
   ContentHash hash = geometryHash(CacheKind::Voxmap, objects);
   hash.addDouble(options.voxelSizeM);
   hash.add(static_cast<std::int32_t>(options.encoding.bitsPerField));
   hash.add(static_cast<std::int32_t>(options.encoding.rangeVoxels));
   hash.add(static_cast<std::uint8_t>(options.buildFeatureFields));
-  const Digest128 key = hash.digest();
+  return hash.digest();
+}
 
+std::string voxmapFileName(const Digest128& key) { return "voxmap-" + key.hex() + ".vxc"; }
+
+/// Opens the voxmap cache file `file` for paging within `budgetBytes`: everything but the
+/// voxel words is read, the words are only checksummed. Empty when the whole voxmap fits
+/// the budget. Throws CacheFileError on a bad file, voxhap::Error when the budget cannot
+/// hold even the voxmap's tables.
+std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& key, const VoxelizeOptions& options,
+                                        std::uint64_t budgetBytes) {
+  CacheFileReader r(file, CacheKind::Voxmap, key);
+  VoxelGrid grid;
+  grid.originLocal = r.get<glm::dvec3>();
+  grid.voxelSizeM = r.get<double>();
+  grid.dimsHyper = r.get<glm::ivec3>();
+  VoxelEncoding encoding;
+  encoding.bitsPerField = r.get<std::int32_t>();
+  encoding.rangeVoxels = r.get<std::int32_t>();
+  if (grid.voxelSizeM != options.voxelSizeM || encoding.bitsPerField != options.encoding.bitsPerField ||
+      encoding.rangeVoxels != options.encoding.rangeVoxels) {
+    throw CacheFileError("holds other data (parameters differ)");
+  }
+  VoxelizeStats stats;
+  for (std::uint64_t* c : counters(stats)) *c = r.get<std::uint64_t>();
+  (void)r.get<std::uint8_t>();
+  (void)r.get<glm::dvec3>();
+  auto hyper = r.getArray<std::uint32_t>();
+  auto chunks = r.getArray<std::uint32_t>();
+  const auto wordBytes = r.get<std::uint64_t>();
+  // the trees, the file blocks of the chunk entries and the chunk-level field (a byte a chunk)
+  const std::uint64_t tableBytes =
+      (hyper.size() + 2 * chunks.size()) * sizeof(std::uint32_t) + hyper.size() * kChunksPerHyper;
+  if (wordBytes + tableBytes <= budgetBytes) return std::nullopt;
+  const std::uint64_t wordsOffset = r.fileOffset();
+  r.skip(wordBytes);
+  auto chunkDistances = r.getArray<std::uint8_t>();
+  r.finish();
+  const std::string problem = Voxmap::validate(grid, encoding, hyper, chunks, wordBytes, chunkDistances.size());
+  if (!problem.empty()) throw CacheFileError("is corrupt (" + problem + ")");
+
+  const std::size_t blockBytes = std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
+  if (budgetBytes < tableBytes + blockBytes) {
+    throw Error("a voxel memory of " + std::to_string(budgetBytes) + " bytes cannot hold the voxmap's tables (" +
+                std::to_string(tableBytes) + " bytes) and one chunk of voxel words; allow more");
+  }
+  const std::size_t slots = static_cast<std::size_t>((budgetBytes - tableBytes) / blockBytes);
+  std::vector<std::uint32_t> fileBlockOfEntry(chunks.size(), 0xFFFFFFFFu);
+  for (std::size_t i = 0; i < chunks.size(); ++i) {
+    if (chunks[i] & Voxmap::kUniform) continue;
+    fileBlockOfEntry[i] = chunks[i];
+    chunks[i] = Voxmap::kUniform | Voxmap::kMissingWord;
+  }
+  BudgetedVoxmap result;
+  result.wordBytes = wordBytes;
+  result.voxmap = Voxmap(grid, encoding, std::move(hyper), std::move(chunks), std::vector<std::uint8_t>(slots * blockBytes),
+                         std::move(chunkDistances));
+  result.pager = std::make_shared<VoxelPager>(result.voxmap.pagedArrays(), file, wordsOffset,
+                                              std::move(fileBlockOfEntry), slots);
+  return result;
+}
+
+}  // namespace
+
+BudgetedVoxmap voxelizeWithinBudget(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
+                                    const CacheOptions& cache, std::uint64_t budgetBytes, const ProgressFn& progress) {
+  if (!cache.enabled || cache.directory.empty()) {
+    throw Error("a voxel memory budget pages voxels from the voxel cache, which is off (--no-cache)");
+  }
+  checkVoxelizeOptions(options);
+  const Digest128 key = voxmapKey(objects, options);
+  const fs::path file = cache.directory / voxmapFileName(key);
+  BudgetedVoxmap result;
+  std::error_code ec;
+  if (fs::exists(file, ec)) {
+    try {
+      if (auto paged = openPaged(file, key, options, budgetBytes)) return std::move(*paged);
+    } catch (const CacheFileError& e) {
+      result.warnings.push_back("cache file " + file.string() + " " + e.what() + "; rebuilt");
+    }
+  }
+  CachedVoxelization whole = voxelizeCached(objects, options, cache, progress);
+  for (std::string& w : whole.warnings) result.warnings.push_back(std::move(w));
+  const std::uint64_t wordBytes = whole.voxelized.voxmap.voxelBytes().size();
+  if (whole.voxelized.voxmap.memoryBytes() <= budgetBytes) {
+    result.voxmap = std::move(whole.voxelized.voxmap);
+    result.wordBytes = wordBytes;
+    return result;
+  }
+  whole = CachedVoxelization{};  // free it before paging it back
+  if (!fs::exists(file, ec)) throw Error(file.string() + ": the voxmap could not be cached, so it cannot be paged");
+  auto paged = openPaged(file, key, options, budgetBytes);
+  if (!paged) throw Error(file.string() + ": the voxmap fits its budget after all");  // unreachable: same sizes
+  paged->warnings = std::move(result.warnings);
+  return std::move(*paged);
+}
+
+CachedVoxelization voxelizeCached(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
+                                  const CacheOptions& cache, const ProgressFn& progress) {
+  const Digest128 key = voxmapKey(objects, options);
   checkVoxelizeOptions(options);
   CachedVoxelization result;
   loadOrBuild(
-      result, cache, "voxmap-" + key.hex() + ".vxc", CacheKind::Voxmap, key,
+      result, cache, voxmapFileName(key), CacheKind::Voxmap, key,
       [&](CacheFileReader& r) { result.voxelized = loadVoxelized(r, options); },
       [&] {
         const auto start = std::chrono::steady_clock::now();

@@ -12,7 +12,9 @@
 /// only costs a warning. Load time only; allocates; thread count never changes a
 /// result, so it is not part of the key.
 
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -20,6 +22,7 @@
 #include "haptics/core/progress.h"
 #include "haptics/pointshell/pointshell.h"
 #include "haptics/scene/scene.h"
+#include "haptics/voxel/voxel_pager.h"
 #include "haptics/voxel/voxelizer.h"
 
 namespace voxhap {
@@ -58,6 +61,23 @@ struct CachedPointshell {
 /// voxelize() does; cache trouble is never an error, only a warning.
 CachedVoxelization voxelizeCached(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
                                   const CacheOptions& cache, const ProgressFn& progress = {});
+
+/// A static voxmap within a memory budget (paper §5.3, DESIGN §4.6).
+struct BudgetedVoxmap {
+  Voxmap voxmap;                      ///< whole, or paged (its words come from `pager`)
+  std::shared_ptr<VoxelPager> pager;  ///< null when the whole voxmap fits the budget
+  std::uint64_t wordBytes = 0;        ///< the voxel words the cache file holds
+  std::vector<std::string> warnings;
+};
+
+/// As voxelizeCached, but keeps at most `budgetBytes` of the voxmap in memory: when the
+/// whole voxmap is larger, its tables are loaded and its voxel words are paged from the
+/// cache file (built and saved first if the cache lacks it; its checksum is checked
+/// once). Throws voxhap::Error when the cache is off or cannot be written, or when the
+/// budget cannot hold the voxmap's tables and one chunk.
+BudgetedVoxmap voxelizeWithinBudget(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
+                                    const CacheOptions& cache, std::uint64_t budgetBytes,
+                                    const ProgressFn& progress = {});
 
 /// Builds the pointshell of the parts of `objects` (features at the point spacing, then
 /// buildPointshell()), or loads it from the cache. Throws voxhap::Error as

@@ -29,11 +29,11 @@ namespace voxhap {
 
 class VoxelPager {
 public:
-  /// Pages `voxmap`, whose mixed chunk entries all read missing; `fileBlockOfEntry[i]` is
-  /// the block in `file` of chunk entry i (UINT32_MAX: not a mixed chunk), block b lying
-  /// at `wordsOffset` + b · block bytes. The voxmap's pool holds `slotCount` blocks. The
-  /// voxmap must outlive the pager and stay where it is.
-  VoxelPager(Voxmap& voxmap, const std::filesystem::path& file, std::uint64_t wordsOffset,
+  /// Pages a voxmap (`arrays`, from Voxmap::pagedArrays()) whose mixed chunk entries all
+  /// read missing; `fileBlockOfEntry[i]` is the block in `file` of chunk entry i
+  /// (UINT32_MAX: not a mixed chunk), block b lying at `wordsOffset` + b · block bytes. The
+  /// pool holds `slotCount` blocks. The voxmap must outlive the pager.
+  VoxelPager(const Voxmap::PagedArrays& arrays, const std::filesystem::path& file, std::uint64_t wordsOffset,
              std::vector<std::uint32_t> fileBlockOfEntry, std::size_t slotCount);
   ~VoxelPager();
   VoxelPager(const VoxelPager&) = delete;
@@ -45,8 +45,8 @@ public:
   /// coordinates of the voxmap; clipped to its grid). Dropped when the ring is full.
   void request(const glm::ivec3& loChunk, const glm::ivec3& hiChunk) noexcept;
 
-  /// Load time: asks for the chunks and waits until the pager has read them (or the pool
-  /// is full).
+  /// Load time, before any frame: asks for the chunks and waits until the pager has read
+  /// them (the caller stands in for the haptic thread, whose frames it counts).
   void makeResident(const glm::ivec3& loChunk, const glm::ivec3& hiChunk);
 
   std::size_t slotCount() const noexcept { return slotEntry_.size(); }
@@ -68,7 +68,7 @@ private:
   /// when the pager is stopping.
   std::uint32_t freeSlot();
 
-  Voxmap& voxmap_;
+  Voxmap::PagedArrays arrays_;
   int fd_ = -1;
   std::uint64_t wordsOffset_;
   std::size_t blockBytes_;

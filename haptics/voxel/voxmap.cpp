@@ -9,9 +9,13 @@ namespace {
 /// Largest grid edge in hyperchunks a voxmap may have (2^24 voxels, as the voxelizer allows).
 constexpr int kMaxDimsHyper = (1 << 24) / kHyperEdgeVoxels + 1;
 
-/// Whether a tree entry is a uniform word that fits the encoding, or an index below `count`.
-bool entryValid(std::uint32_t entry, std::size_t count, std::uint32_t uniformLimit) {
-  if (entry & Voxmap::kUniform) return (entry & ~Voxmap::kUniform) < uniformLimit;
+/// Whether a tree entry is a uniform word that fits the encoding (or, for a chunk of a
+/// paged voxmap, the missing word), or an index below `count`.
+bool entryValid(std::uint32_t entry, std::size_t count, std::uint32_t uniformLimit, bool missingAllowed) {
+  if (entry & Voxmap::kUniform) {
+    const std::uint32_t word = entry & ~Voxmap::kUniform;
+    return word < uniformLimit || (missingAllowed && word == Voxmap::kMissingWord);
+  }
   return entry < count;
 }
 
@@ -51,10 +55,10 @@ std::string Voxmap::validate(const VoxelGrid& grid, const VoxelEncoding& encodin
   if (voxelBytesSize % blockBytes != 0) return "voxel words are not whole chunks";
   const std::uint32_t uniformLimit = 1u << (kFieldCount * encoding.bitsPerField);
   for (std::uint32_t entry : hyper) {
-    if (!entryValid(entry, chunks.size() / kChunksPerHyper, uniformLimit)) return "hyperchunk entry out of range";
+    if (!entryValid(entry, chunks.size() / kChunksPerHyper, uniformLimit, false)) return "hyperchunk entry out of range";
   }
   for (std::uint32_t entry : chunks) {
-    if (!entryValid(entry, voxelBytesSize / blockBytes, uniformLimit)) return "chunk entry out of range";
+    if (!entryValid(entry, voxelBytesSize / blockBytes, uniformLimit, true)) return "chunk entry out of range";
   }
   return {};
 }

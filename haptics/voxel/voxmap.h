@@ -13,8 +13,16 @@
 ///
 /// A lookup is two or three dependent loads, no branch on the bit width, no
 /// allocation; any thread may read concurrently.
+///
+/// Paged (voxel_pager.h): when the voxel words do not fit a memory budget, voxelBytes_
+/// is a pool of slots that a pager thread fills from the cache file, and a mixed chunk's
+/// entry reads kUniform | kMissingWord until its words are resident. The pager publishes
+/// entries with release stores; lookups read them with acquire loads (plain loads on
+/// x86), so an unpaged voxmap pays nothing. word() returns kMissingWord for a chunk that
+/// is not resident; callers of a paged voxmap check for it.
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <span>
@@ -30,6 +38,9 @@ class Voxmap {
 public:
   /// Marks a tree entry that holds a uniform word rather than an index.
   static constexpr std::uint32_t kUniform = 0x80000000u;
+  /// What word() returns for a voxel whose chunk is paged out: no encoding makes it (its
+  /// fields would run past 24 bits).
+  static constexpr VoxelWord kMissingWord = 0x7FFFFFFFu;
 
   Voxmap() = default;
   /// Takes the flat tree (see above) and the chunk-level field, one byte per chunk of
@@ -55,8 +66,8 @@ public:
     const std::uint32_t hyperEntry =
         hyper_[static_cast<std::size_t>(h.x + grid_.dimsHyper.x * (h.y + grid_.dimsHyper.y * h.z))];
     if (hyperEntry & kUniform) return hyperEntry & ~kUniform;
-    const std::uint32_t chunkEntry =
-        chunks_[std::size_t{hyperEntry} * kChunksPerHyper + chunkInHyper(ijkVoxel >> kChunkEdgeLog2)];
+    const std::uint32_t chunkEntry = chunkEntry_(std::size_t{hyperEntry} * kChunksPerHyper +
+                                                 chunkInHyper(ijkVoxel >> kChunkEdgeLog2));
     if (chunkEntry & kUniform) return chunkEntry & ~kUniform;
     const std::size_t at =
         (std::size_t{chunkEntry} * kVoxelsPerChunk + voxelInChunk(ijkVoxel)) * bytesPerWord_;
@@ -106,7 +117,36 @@ public:
   /// Bytes after the last block, so that a 4-byte read of the last word stays inside.
   static constexpr std::size_t kPadBytes = sizeof(VoxelWord);
 
+  /// The arrays a pager (voxel_pager.h) fills: they live on the heap and stay where they
+  /// are when the voxmap is moved.
+  struct PagedArrays {
+    VoxelGrid grid;
+    const std::uint32_t* hyper = nullptr;
+    std::uint32_t* chunks = nullptr;  ///< entries published with release stores
+    std::uint8_t* pool = nullptr;     ///< the slots, blockBytes each
+    std::size_t blockBytes = 0;
+
+    /// The index in `chunks` of chunk `ijkChunk` (inside the grid), or −1 when its
+    /// hyperchunk is uniform.
+    std::int64_t chunkEntryIndex(const glm::ivec3& ijkChunk) const {
+      const glm::ivec3 h = ijkChunk >> kHyperEdgeLog2;
+      const std::uint32_t hyperEntry =
+          hyper[static_cast<std::size_t>(h.x + grid.dimsHyper.x * (h.y + grid.dimsHyper.y * h.z))];
+      if (hyperEntry & kUniform) return -1;
+      return static_cast<std::int64_t>(std::size_t{hyperEntry} * kChunksPerHyper + chunkInHyper(ijkChunk));
+    }
+    void publish(std::size_t index, std::uint32_t entry) const {
+      std::atomic_ref<std::uint32_t>(chunks[index]).store(entry, std::memory_order_release);
+    }
+  };
+  PagedArrays pagedArrays() { return {grid_, hyper_.data(), chunks_.data(), voxelBytes_.data(), blockBytes()}; }
+
 private:
+  std::uint32_t chunkEntry_(std::size_t index) const {
+    // atomic_ref needs a non-const object; the entry is only read here
+    return std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(chunks_[index])).load(std::memory_order_acquire);
+  }
+
   std::size_t blockBytes() const { return std::size_t{kVoxelsPerChunk} * bytesPerWord_; }
 
   VoxelGrid grid_;
