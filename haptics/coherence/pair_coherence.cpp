@@ -88,7 +88,7 @@ void PairCoherence::testChunk(std::uint32_t chunk, int from, int to, const glm::
     chunks.move(chunk, from, to);
   } else {  // disgorged: every point still reads far; its voxels are wanted soon
     points_.queues().insertRange(first, last, queueForValue(kValueFar, forceLayer_, maxValue_));
-    askAround(pager, voxelOfCentroid, chunkRadiusVoxels_[chunk] + 2.0f * kChunkEdgeVoxels);
+    askAround(pager, voxelOfCentroid, chunkRadiusVoxels_[chunk] + kChunkEdgeVoxels);
     if (drifting_) std::fill(lookupQueue_.begin() + first, lookupQueue_.begin() + last, std::uint8_t{0});
     chunks.move(chunk, from, kChunkInRange);
   }
@@ -222,7 +222,9 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
         ++tested.missing;
         queues.move(point, q, 1);
         if (drifting_) lookupQueue_[point] = 0;
-        askAround(pager, voxel, kChunkEdgeVoxels);
+        const glm::ivec3 chunk = glm::ivec3(glm::floor(voxel / float(kChunkEdgeVoxels)));
+        if (chunk != tested.lastAskedChunk) askAround(pager, voxel, kChunkEdgeVoxels);
+        tested.lastAskedChunk = chunk;  // neighbours miss together: one request for a run of them
         continue;
       }
       // value − 1 wraps far (0) to 255, so one compare keeps [1, sampledLayer]

@@ -94,6 +94,7 @@ public:
     std::uint32_t contacts = 0;  ///< written to `contacts`
     std::uint32_t drifted = 0;   ///< tests that skipped the lookup
     std::uint32_t missing = 0;   ///< lookups of paged-out chunks (the frame must be suspended)
+    glm::ivec3 lastAskedChunk{-1 << 30};  ///< the voxmap chunk last asked for
   };
   /// Tests the points collectDue() returned; writes those whose value lies in
   /// [1, sampledLayer] to `contacts` (room for due.size()). A point whose chunk of the

@@ -10,13 +10,13 @@ namespace {
 
 /// Unit direction, voxmap frame, in which the field at `shift` falls around `ijk`
 /// (far counts as one more than the largest value); zero where it is flat. A neighbour
-/// paged out (paged voxmap) counts as the centre and adds one to `missing`.
-glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift, std::uint32_t& missing) {
+/// paged out (paged voxmap) counts as the centre and is noted in `out`.
+glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift, PairWrench& out) {
   const VoxelEncoding& e = voxmap.encoding();
   auto valueAt = [&](const glm::ivec3& v) {
     const VoxelWord word = voxmap.word(v);
     if (word == Voxmap::kMissingWord) {
-      ++missing;
+      if (out.missingVoxels++ == 0) out.firstMissingVoxel = v;
       return -1;
     }
     const auto value = static_cast<int>((word >> shift) & e.fieldMask());
@@ -43,9 +43,9 @@ glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8
 /// the side of a part resting on a plate would push sideways along its own normal). An
 /// edge (edge points): between the two.
 glm::dvec3 pushDirectionOf(const Voxmap& voxmap, const PointContact& contact, PointFeature feature, bool aware,
-                           std::uint8_t fieldShift, const glm::dvec3& n, std::uint32_t& missing) {
+                           std::uint8_t fieldShift, const glm::dvec3& n, PairWrench& out) {
   if (feature == PointFeature::Surface && aware) return n;
-  glm::dvec3 g = fallDirection(voxmap, contact.ijkVoxel, fieldShift, missing);
+  glm::dvec3 g = fallDirection(voxmap, contact.ijkVoxel, fieldShift, out);
   if (g == glm::dvec3(0.0)) g = n;
   if (feature != PointFeature::Edge || !aware) return g;
   const glm::dvec3 between = n + g;
@@ -93,7 +93,7 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     const glm::dvec3 n = shellToVoxmapRotation * glm::dvec3(shell.normalsLocal[c.point]);
     const PointFeature feature = shell.features[c.point];
     const glm::dvec3 pushDirection = pushDirectionOf(voxmap, c, feature, params.geometricalAwareness,
-                                                     shifts[static_cast<std::size_t>(feature)], n, out.missingVoxels);
+                                                     shifts[static_cast<std::size_t>(feature)], n, out);
     const bool beforeContact = c.value > params.forceLayer;
     const double depth = beforeContact ? 0.0
                                        : glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +

@@ -59,6 +59,7 @@ struct PairWrench {
   std::uint32_t pushingPoints = 0;       ///< contacts pushing (depth > 0, or damping before contact)
   double maxDepthM = 0.0;                ///< largest depth d, m
   std::uint32_t missingVoxels = 0;       ///< neighbour lookups of a paged voxmap that found it paged out
+  glm::ivec3 firstMissingVoxel{0};       ///< the first of them
 };
 
 /// Sums the tangent-plane forces of `contacts` (from samplePoints with the same

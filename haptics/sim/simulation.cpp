@@ -39,7 +39,7 @@ bool limitTravel(const RigidBodyState& before, RigidBodyState& after, double rad
   if (!(travel > maxTravelM)) return false;
   const double f = maxTravelM / travel;
   after.comWorld = before.comWorld + (after.comWorld - before.comWorld) * f;
-  after.orientation = slerpShortest(before.orientation, after.orientation, f);
+  after.orientation = f > 0.0 ? slerpShortest(before.orientation, after.orientation, f) : before.orientation;
   after.linearVelocityWorld *= f;
   after.angularVelocityWorld *= f;
   return true;
@@ -245,6 +245,10 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
                                             motionOf(model, state, pair.voxmapObject),
                                             std::span(state.scratch.data(), found));
     missing += w.missingVoxels;
+    if (w.missingVoxels > 0 && model.pagerOf(pair)) {
+      const glm::ivec3 chunk = w.firstMissingVoxel >> kChunkEdgeLog2;
+      model.pagerOf(pair)->request(chunk - 1, chunk + 1);
+    }
     ObjectFrame& s = state.last[static_cast<std::size_t>(pair.shellObject)];
     s.contactForceWorld += w.forceOnShellWorld;
     s.contactTorqueWorld += w.torqueOnShellWorld;
