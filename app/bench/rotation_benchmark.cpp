@@ -20,6 +20,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "app/bench/analytic_scenes.h"
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
 #include "app/cli/number_format.h"
@@ -52,13 +53,6 @@ std::vector<BenchColumn> rotationColumns() {
       {"compute_p99_us", "p99 us", BenchStyle::Fixed, 0},
       {"turned_rad", "turned rad", BenchStyle::Fixed, 2},
   };
-}
-
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size()))) - 1;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-  return values[k];
 }
 
 std::vector<double> voxelSizes(const ParsedArgs& args) {

@@ -130,23 +130,35 @@ void saveVoxelized(CacheFileWriter& w, const VoxelizedObject& v) {
   w.putArray(v.voxmap.chunkDistances());
 }
 
-VoxelizedObject loadVoxelized(CacheFileReader& r, const VoxelizeOptions& options) {
+/// What a voxmap cache file holds before its arrays.
+struct VoxmapHeader {
   VoxelGrid grid;
-  grid.originLocal = r.get<glm::dvec3>();
-  grid.voxelSizeM = r.get<double>();
-  grid.dimsHyper = r.get<glm::ivec3>();
   VoxelEncoding encoding;
-  encoding.bitsPerField = r.get<std::int32_t>();
-  encoding.rangeVoxels = r.get<std::int32_t>();
-  if (grid.voxelSizeM != options.voxelSizeM || encoding.bitsPerField != options.encoding.bitsPerField ||
-      encoding.rangeVoxels != options.encoding.rangeVoxels) {
+  VoxelizeStats stats;
+};
+
+VoxmapHeader readVoxmapHeader(CacheFileReader& r, const VoxelizeOptions& options) {
+  VoxmapHeader h;
+  h.grid.originLocal = r.get<glm::dvec3>();
+  h.grid.voxelSizeM = r.get<double>();
+  h.grid.dimsHyper = r.get<glm::ivec3>();
+  h.encoding.bitsPerField = r.get<std::int32_t>();
+  h.encoding.rangeVoxels = r.get<std::int32_t>();
+  if (h.grid.voxelSizeM != options.voxelSizeM || h.encoding.bitsPerField != options.encoding.bitsPerField ||
+      h.encoding.rangeVoxels != options.encoding.rangeVoxels) {
     throw CacheFileError("holds other data (parameters differ)");
   }
-  VoxelizedObject v;
-  for (std::uint64_t* c : counters(v.stats)) *c = r.get<std::uint64_t>();
+  for (std::uint64_t* c : counters(h.stats)) *c = r.get<std::uint64_t>();
   const bool hasDisagreement = r.get<std::uint8_t>() != 0;
   const auto disagreement = r.get<glm::dvec3>();
-  if (hasDisagreement) v.stats.firstDisagreementLocal = disagreement;
+  if (hasDisagreement) h.stats.firstDisagreementLocal = disagreement;
+  return h;
+}
+
+VoxelizedObject loadVoxelized(CacheFileReader& r, const VoxelizeOptions& options) {
+  const auto [grid, encoding, stats] = readVoxmapHeader(r, options);
+  VoxelizedObject v;
+  v.stats = stats;
   auto hyper = r.getArray<std::uint32_t>();
   auto chunks = r.getArray<std::uint32_t>();
   auto voxelBytes = r.getArray<std::uint8_t>(Voxmap::kPadBytes);
@@ -212,21 +224,7 @@ std::string voxmapFileName(const Digest128& key) { return "voxmap-" + key.hex() 
 std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& key, const VoxelizeOptions& options,
                                         std::uint64_t budgetBytes) {
   CacheFileReader r(file, CacheKind::Voxmap, key);
-  VoxelGrid grid;
-  grid.originLocal = r.get<glm::dvec3>();
-  grid.voxelSizeM = r.get<double>();
-  grid.dimsHyper = r.get<glm::ivec3>();
-  VoxelEncoding encoding;
-  encoding.bitsPerField = r.get<std::int32_t>();
-  encoding.rangeVoxels = r.get<std::int32_t>();
-  if (grid.voxelSizeM != options.voxelSizeM || encoding.bitsPerField != options.encoding.bitsPerField ||
-      encoding.rangeVoxels != options.encoding.rangeVoxels) {
-    throw CacheFileError("holds other data (parameters differ)");
-  }
-  VoxelizeStats stats;
-  for (std::uint64_t* c : counters(stats)) *c = r.get<std::uint64_t>();
-  (void)r.get<std::uint8_t>();
-  (void)r.get<glm::dvec3>();
+  const auto [grid, encoding, stats] = readVoxmapHeader(r, options);
   auto hyper = r.getArray<std::uint32_t>();
   auto chunks = r.getArray<std::uint32_t>();
   const auto wordBytes = r.get<std::uint64_t>();
