@@ -153,7 +153,10 @@ void planFrame(const SimModel& model, SimState& state) {
   plan.capacityTests = model.coherence.capacityTests > 0.0
                            ? model.coherence.capacityTests
                            : model.coherence.testBudgetFraction * model.dtS / state.testCostS;
-  const TravelBudget budget = travelScale(plan.capacityTests, mandatory, load);
+  // the sweeps may take more than Eq. 3's quotas where a queue's points crowd into a run of
+  // indices (pair_coherence.h): plan with the excess measured so far
+  plan.plannedLoad = load * state.sweepExcess;
+  const TravelBudget budget = travelScale(plan.capacityTests, mandatory, plan.plannedLoad);
   // The first frame with more mandatory tests than capacity stops everything (MaxTravel =
   // 0). If the next is short too, time-criticality is abandoned (paper §5) until it is
   // not: frames test what full MaxTravel needs however long they take, and count as
@@ -264,6 +267,14 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
     }
   }
   state.coherent.tested = testedInFrame;
+  // what the sweeps took beyond the mandatory tests, over what Eq. 3 asked (enough of
+  // them to be a fair sample): a smoothed ratio, at least one
+  const CoherenceFrame& plan = state.coherent;
+  const double asked = plan.travelScale * plan.plannedLoad / state.sweepExcess;
+  const double taken = static_cast<double>(testedInFrame + plan.chunkTests) - static_cast<double>(plan.mandatory);
+  if (asked >= 100.0 && !plan.deadlineMissed) {
+    state.sweepExcess = std::max(1.0, 0.95 * state.sweepExcess + 0.05 * taken / asked);
+  }
   suspendOrResume(state, missing > 0, std::chrono::steady_clock::now());
   if (state.suspensions.active) {
     state.coherent.travelScale = 0.0;

@@ -53,6 +53,7 @@ struct CoherenceFrame {
   std::uint32_t mandatory = 0;    ///< points and chunks tested whatever the travel
   double capacityTests = 0.0;     ///< n_cap used by Eq. 2
   double travelScale = 1.0;       ///< every object's MaxTravel over its upper bound
+  double plannedLoad = 0.0;       ///< Eq. 2's free-space tests at full travel, with the sweeps' excess
   bool deadlineMissed = false;    ///< more mandatory tests than capacity (see planFrame)
 };
 
@@ -97,6 +98,9 @@ struct SimState {
   std::uint64_t missedDeadlines = 0;
   /// Online estimate of the time one point test (with its share of forces) takes, s.
   double testCostS = 20e-9;
+  /// Free-space tests the sweeps take over those Eq. 3 asks for, smoothed (≥ 1; from
+  /// the tests themselves, so a fixed capacity stays bit-reproducible).
+  double sweepExcess = 1.0;
   Suspensions suspensions;
   /// A suspension outlasted kMaxSuspensionS: the run is over and step() does nothing more.
   bool stopped = false;

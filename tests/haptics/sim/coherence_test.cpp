@@ -161,7 +161,7 @@ TEST_P(CoherenceUnderRandomMotion, NoPointReachesTheForceLayerUntested) {
 }
 
 const RandomMotionCase kRandomMotionCases[] = {
-    {"SphereAware", sphereOverPlate, glm::dvec3(0.0, 0.0, kRadius + 0.002), 1.5, true, 0.03, true},
+    {"SphereAware", sphereOverPlate, glm::dvec3(0.0, 0.0, kRadius + 0.002), 1.5, true, 0.08, true},
     {"SphereAwareNoDrifting", sphereOverPlate, glm::dvec3(0.0, 0.0, kRadius + 0.002), 1.5, true, 0.03, false},
     {"SphereUnaware", sphereOverPlate, glm::dvec3(0.0, 0.0, kRadius + 0.002), 1.5, false, 0.1, true},
     {"TallBarAware", barOverPlate, glm::dvec3(0.0, 0.0, 0.032), 0.1, true, 0.05, true},
