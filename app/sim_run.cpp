@@ -14,6 +14,14 @@
 
 namespace voxhap::cli {
 
+const OptionSpec kCapacityOption{"capacity", 0, "N", "point tests per frame (default: measured online)"};
+const OptionSpec kVoxelMemoryOption{"voxel-memory", 0, "SIZE",
+                                    "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache"};
+const OptionSpec kBruteForceOption{"brute-force", 0, "",
+                                   "test every point every frame (no time-critical sampling), for comparison"};
+const OptionSpec kNoDriftingOption{"no-drifting", 0, "",
+                                   "look every due point up in the voxmap (no point drifting, paper §5.2)"};
+
 SceneModelOptions sceneModelOptionsFromArgs(const ParsedArgs& args, Console& console,
                                             double defaultVoxelSizeM,
                                             std::optional<double> defaultPointSpacingM) {

@@ -20,6 +20,12 @@
 
 namespace voxhap::cli {
 
+/// Options of time-critical sampling and paging, read by sceneModelOptionsFromArgs.
+extern const OptionSpec kCapacityOption;      ///< --capacity N
+extern const OptionSpec kVoxelMemoryOption;   ///< --voxel-memory SIZE
+extern const OptionSpec kBruteForceOption;    ///< --brute-force
+extern const OptionSpec kNoDriftingOption;    ///< --no-drifting
+
 /// SceneModelOptions from the options a command declares (any it does not declare are
 /// simply absent): --voxel-size (default `defaultVoxelSizeM`), --point-spacing (default
 /// `defaultPointSpacingM`, else the voxel size), --point-offset, --point-layer,

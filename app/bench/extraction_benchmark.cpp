@@ -144,9 +144,9 @@ Benchmark extractionBenchmark() {
       "  voxhap bench extraction --quick --brute-force --csv brute.csv";
   b.options = {
       {"quick", 0, "", "only the first row (1.0 / 2.5 mm), for CI"},
-      {"brute-force", 0, "", "test every point every frame (no time-critical sampling)"},
-      {"capacity", 0, "N", "point tests per frame (default: measured online)"},
-      {"voxel-memory", 0, "SIZE", "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache"},
+      kBruteForceOption,
+      kCapacityOption,
+      kVoxelMemoryOption,
       {"duration", 0, "SECONDS", "simulated time per row (default: the whole script)"},
       {"penetration-every", 0, "N", "measure the exact penetration every N frames (default 1)"},
       {"script", 0, "FILE", "motion script (default assets/scripts/actuator-extract.txt)"},

@@ -23,6 +23,7 @@
 #include "app/bench/analytic_scenes.h"
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
+#include "app/sim_run.h"
 #include "app/cli/number_format.h"
 #include "app/scene_source.h"
 #include "haptics/core/error.h"
@@ -184,7 +185,7 @@ Benchmark rotationBenchmark() {
   b.options = {
       {"quick", 0, "", "only 0.35 mm, for CI"},
       {"voxel-size", 0, "LENGTH", "a voxel size to measure (repeatable; default the four above)"},
-      {"capacity", 0, "N", "point tests per frame (default: measured online)"},
+      kCapacityOption,
       kCacheDirOption,
       kNoCacheOption,
   };

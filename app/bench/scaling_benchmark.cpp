@@ -30,6 +30,7 @@
 #include "app/bench/analytic_scenes.h"
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
+#include "app/sim_run.h"
 #include "app/cli/number_format.h"
 #include "haptics/core/error.h"
 #include "haptics/sim/scene_model.h"
@@ -285,7 +286,7 @@ Benchmark scalingBenchmark() {
       {"points", 0, "N", "a pointshell size to measure (repeatable; default the four above)"},
       {"static-voxel-size", 0, "LENGTH", "the plate's voxel size in every row (default: the row's spacing)"},
       {"seconds", 0, "S", "length of the coherent run, s (default 5)"},
-      {"capacity", 0, "N", "point tests per frame (default: measured online)"},
+      kCapacityOption,
       kCacheDirOption,
       kNoCacheOption,
   };

@@ -162,9 +162,9 @@ Command demoCommand() {
   demo.options = {
       {"voxel-size", 0, "LENGTH", "voxel size of the static gear (default 2.5mm)"},
       {"point-spacing", 0, "LENGTH", "point spacing of the actuator (default 1mm)"},
-      {"capacity", 0, "N", "point tests per frame (default: measured online)"},
-      {"voxel-memory", 0, "SIZE", "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache"},
-      {"brute-force", 0, "", "test every point every frame (no time-critical sampling), for comparison"},
+      kCapacityOption,
+      kVoxelMemoryOption,
+      kBruteForceOption,
       {"duration", 0, "SECONDS", "simulated time (default: the whole script, 18 s)"},
       {"penetration-every", 0, "N", "measure the exact penetration every N frames (default 1)"},
       {"script", 0, "FILE", "motion script of the handle (default assets/scripts/actuator-extract.txt)"},
