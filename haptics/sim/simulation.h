@@ -12,8 +12,12 @@
 ///      half a chunk when all its pairs are out of range or collapsed, §5.1), which the
 ///      user feels as viscosity;
 ///   5. the device of each coupled object gets the negated coupling wrench, clamped.
+/// A frame that needed voxels of a paged static voxmap that were not yet resident is
+/// suspended instead (paper §5.3): nothing moves, the devices get no force, and after
+/// kMaxSuspensionS of suspension the run stops (SimState::stopped).
 /// All buffers live in SimState, sized by makeSimState: step() never allocates, locks,
-/// throws or prints. Deterministic: same model, state and handles, same bits.
+/// throws or prints. Deterministic with a fixed capacity and whole voxmaps: same model,
+/// state and handles, same bits (a capacity measured online and a pager's timing are not).
 
 #include <chrono>
 #include <cstdint>
