@@ -112,8 +112,9 @@ void PairCoherence::sortAll(const Pointshell& shell, const Voxmap& voxmap, const
     }
     chunks_.queues().move(c, kChunkTestNow, kChunkInRange);
     for (std::uint32_t p = chunkBegin_[c]; p < chunkBegin_[c + 1]; ++p) {
-      const std::uint8_t value = samplePointAt(shell, voxmap, transform, fieldShifts, p).value;
-      points_.queues().insert(p, queueForValue(value, forceLayer_, maxValue_));
+      const PointSample sample = samplePointAt(shell, voxmap, transform, fieldShifts, p);
+      // a chunk the pool could not keep: the point is tested again in the first frame
+      points_.queues().insert(p, sample.missing ? 1 : queueForValue(sample.value, forceLayer_, maxValue_));
       if (drifting_) lookupQueue_[p] = 0;  // tested at load, but start every point afresh
     }
   }
