@@ -271,7 +271,7 @@ Benchmark scalingBenchmark() {
       "sample the plate's far vertex and edge fields.\n\n"
       "The coherent run (5 s of frames; capacity measured online unless --capacity) times\n"
       "every frame: percentiles, frames over the 1 ms budget, missed deadlines (more points\n"
-      "in contact than the capacity: nothing moves), point tests, contacts and MaxTravel\n"
+      "in contact than the capacity), point tests, contacts and MaxTravel\n"
       "(mean_travel_scale: over its bound of half a voxel). A shorter run from the\n"
       "same start with coherence off tests every point every frame: brute_p50_us, and\n"
       "speedup = brute p50 / coherent p50.\n\n"
