@@ -35,7 +35,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <span>
 
 namespace voxhap {
 
@@ -60,23 +59,6 @@ inline constexpr int kMandatoryQueues = 2;
 /// reach the force layer.
 inline int voxelsToContact(int i) noexcept { return i - 1; }
 
-/// Σ_i n_i / d_i over the free-space queues: the tests per frame that a relative travel
-/// of one voxel per frame costs.
-inline double queueLoad(std::span<const std::uint32_t> queueCounts) noexcept {
-  double load = 0.0;
-  for (std::size_t i = kMandatoryQueues; i < queueCounts.size(); ++i) {
-    load += static_cast<double>(queueCounts[i]) / voxelsToContact(static_cast<int>(i));
-  }
-  return load;
-}
-
-/// Points tested every frame.
-inline std::uint32_t mandatoryCount(std::span<const std::uint32_t> queueCounts) noexcept {
-  std::uint32_t n = 0;
-  for (std::size_t i = 0; i < queueCounts.size() && i < kMandatoryQueues; ++i) n += queueCounts[i];
-  return n;
-}
-
 /// What Eq. 2 allows this frame, as a fraction of every object's upper bound.
 struct TravelBudget {
   double scale = 0.0;           ///< 0 … 1
@@ -84,8 +66,9 @@ struct TravelBudget {
 };
 
 /// Eq. 2 over all pairs: `capacityTests` point tests fit in a frame, `mandatoryTests`
-/// must be done, and `loadAtFullTravel` = Σ over pairs of queueLoad · (relative travel at
-/// scale 1, in voxels of that pair) more are needed to let everything move by its bound.
+/// must be done, and `loadAtFullTravel` = Σ over queues of n_i · (relative travel at scale
+/// 1) / (d_i · s) more are needed to let everything move by its bound
+/// (PairCoherence::load).
 inline TravelBudget travelScale(double capacityTests, double mandatoryTests, double loadAtFullTravel) noexcept {
   if (mandatoryTests >= capacityTests) return {0.0, true};
   if (!(loadAtFullTravel > 0.0)) return {1.0, false};
@@ -93,11 +76,11 @@ inline TravelBudget travelScale(double capacityTests, double mandatoryTests, dou
   return {scale < 1.0 ? scale : 1.0, false};
 }
 
-/// Eq. 3: how many of the `count` points of queue `i` to test this frame when the pair
-/// moves by at most `relativeTravelM` with voxels of `voxelSizeM`. All of a mandatory queue.
-inline std::uint32_t queueQuota(std::uint32_t count, int i, double relativeTravelM, double voxelSizeM) noexcept {
-  if (i < kMandatoryQueues) return count;
-  const double share = std::ceil(static_cast<double>(count) * relativeTravelM / (voxelsToContact(i) * voxelSizeM));
+/// Eq. 3: how many of the `count` members of a queue whose members must be tested again
+/// before a relative travel of `distanceM` (d_i · s) to test this frame, when the pair
+/// moves by at most `travelM`.
+inline std::uint32_t sweepQuota(std::uint32_t count, double travelM, double distanceM) noexcept {
+  const double share = std::ceil(static_cast<double>(count) * travelM / distanceM);
   return share >= static_cast<double>(count) ? count : static_cast<std::uint32_t>(share);
 }
 

@@ -25,8 +25,6 @@ public:
   int queueCount() const noexcept { return static_cast<int>(counts_.size()); }
   /// Points in queue `q`.
   std::uint32_t count(int q) const noexcept { return counts_[static_cast<std::size_t>(q)]; }
-  /// Points in every queue, by queue.
-  std::span<const std::uint32_t> counts() const noexcept { return counts_; }
   /// The queue holding `point`, or −1 when it is in none.
   int queueOf(std::uint32_t point) const noexcept;
 

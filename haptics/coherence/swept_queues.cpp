@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "haptics/coherence/max_travel.h"
+
 namespace voxhap {
 
 SweptQueues::SweptQueues(std::uint32_t memberCount, int queueCount)
@@ -21,10 +23,8 @@ std::uint32_t SweptQueues::collect(int q, double distanceM, double travelM, doub
     owed = 0.0;  // nobody waits in an empty queue
     return 0;
   }
-  const double quota = std::ceil(static_cast<double>(count) * travelM / distanceM);
-  const auto minTaken = quota >= count ? count : static_cast<std::uint32_t>(quota);
-  const PointQueues::Sweep sweep =
-      queues_.takeSweep(q, minTaken, static_cast<std::uint64_t>(std::ceil(owed)), out);
+  const PointQueues::Sweep sweep = queues_.takeSweep(q, sweepQuota(count, travelM, distanceM),
+                                                    static_cast<std::uint64_t>(std::ceil(owed)), out);
   owed = std::max(0.0, owed - static_cast<double>(sweep.coveredIndices));
   return sweep.taken;
 }

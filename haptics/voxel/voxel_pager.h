@@ -7,7 +7,7 @@
 /// requests when full) when a chunk of a pointshell comes within reach of the voxmap's
 /// voxel-bearing chunks, and when a lookup finds a chunk missing; it never waits. The
 /// pager reads a missing chunk's words with pread into a free slot and publishes the
-/// chunk's entry (Voxmap::publishChunkEntry). When slots run short it takes back those
+/// chunk's entry (Voxmap::PagedArrays::publish). When slots run short it takes back those
 /// least recently asked for: it unpublishes their entries, then waits until the haptic
 /// thread has begun two frames (beginFrame()) before reusing them, so that no lookup
 /// still reads a slot being overwritten.

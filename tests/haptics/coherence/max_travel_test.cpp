@@ -1,15 +1,32 @@
 #include "haptics/coherence/max_travel.h"
 
+#include <span>
+#include <utility>
+
 #include <gtest/gtest.h>
 
 namespace voxhap {
 namespace {
 
+/// Mandatory points and Σ n_i / d_i (tests per voxel of travel) of queues by count.
+std::pair<double, double> mandatoryAndLoad(std::span<const std::uint32_t> counts) {
+  double mandatory = 0.0, load = 0.0;
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    if (static_cast<int>(i) < kMandatoryQueues) {
+      mandatory += counts[i];
+    } else {
+      load += counts[i] / static_cast<double>(voxelsToContact(static_cast<int>(i)));
+    }
+  }
+  return {mandatory, load};
+}
+
 TEST(MaxTravel, FollowsEquationTwoAndItsBound) {
   // 100 mandatory; 900 spare tests for a load of 600/1 + 600/2 = 900 at full travel: scale 1
   const std::uint32_t counts[] = {60, 40, 600, 600};
-  EXPECT_EQ(mandatoryCount(counts), 100u);
-  EXPECT_DOUBLE_EQ(queueLoad(counts), 900.0);
+  const auto [mandatory, load] = mandatoryAndLoad(counts);
+  EXPECT_EQ(mandatory, 100.0);
+  EXPECT_DOUBLE_EQ(load, 900.0);
   EXPECT_DOUBLE_EQ(travelScale(1000, 100, 900).scale, 1.0);
   EXPECT_DOUBLE_EQ(travelScale(1000, 100, 1800).scale, 0.5);
   EXPECT_DOUBLE_EQ(travelScale(1000, 100, 90).scale, 1.0);  // never beyond the bound
@@ -24,20 +41,18 @@ TEST(MaxTravel, QuotasTestEveryQueueOftenEnoughAndFitTheCapacity) {
   const std::uint32_t counts[] = {50, 300, 900, 2000, 10000, 7};
   const double capacity = 2000;
   const double boundM = 0.5 * s;
-  const TravelBudget budget = travelScale(capacity, mandatoryCount(counts), queueLoad(counts) * boundM / s);
+  const auto [mandatory, load] = mandatoryAndLoad(counts);
+  const TravelBudget budget = travelScale(capacity, mandatory, load * boundM / s);
   ASSERT_FALSE(budget.deadlineMissed);
   ASSERT_LT(budget.scale, 1.0);
   const double travelM = budget.scale * boundM;
-  double tests = 0;
-  for (int i = 0; i < 6; ++i) {
-    const std::uint32_t m = queueQuota(counts[i], i, travelM, s);
-    if (i < kMandatoryQueues) {
-      EXPECT_EQ(m, counts[i]);
-    } else {
-      // a point of queue i is due again after n_i / m_i frames, in which it moves at most
-      // that many MaxTravels: never as far as the i − 1 voxels it must cross
-      EXPECT_LE(static_cast<double>(counts[i]) / m * travelM, (i - 1) * s * (1 + 1e-12));
-    }
+  double tests = mandatory;
+  for (int i = kMandatoryQueues; i < 6; ++i) {
+    const double distanceM = voxelsToContact(i) * s;
+    const std::uint32_t m = sweepQuota(counts[i], travelM, distanceM);
+    // a point of queue i is due again after n_i / m_i frames, in which it moves at most
+    // that many MaxTravels: never as far as the i − 1 voxels it must cross
+    EXPECT_LE(static_cast<double>(counts[i]) / m * travelM, distanceM * (1 + 1e-12));
     tests += m;
   }
   EXPECT_LE(tests, capacity + 4);  // each quota rounds up by less than one
