@@ -57,7 +57,7 @@ glm::dvec3 pushDirectionOf(const Voxmap& voxmap, const PointContact& contact, Po
 
 PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, const ContactParams& params,
                               const BodyMotion& shellMotion, const BodyMotion& voxmapMotion,
-                              std::span<const PointContact> contacts) noexcept {
+                              std::span<const PointContact> contacts, const DepthRowSink* sink) noexcept {
   PairWrench out;
   if (contacts.empty()) return out;
   const Pose shellToVoxmap = compose(inverse(voxmapMotion.poseWorld), shellMotion.poseWorld);
@@ -99,6 +99,17 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
                                        : glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +
                                              static_cast<double>(params.forceLayer - c.value) * s;
     out.contactPoints += beforeContact ? 0 : 1;
+    if (sink && !beforeContact && depth > sink->minDepthM) {
+      if (out.depthRows < sink->rows.size()) {
+        DepthRow& row = sink->rows[out.depthRows++];
+        row.pointWorld = apply(voxmapMotion.poseWorld, p);
+        row.intoVoxmapWorld = applyRotation(voxmapMotion.poseWorld, pushDirection);
+        row.depthM = depth;
+        row.floorM = sink->minDepthM;
+      } else {
+        out.depthRowsOverflowed = true;
+      }
+    }
     if (!beforeContact && depth <= 0.0) continue;
     const double approach = glm::dot(linear + glm::cross(angular, p), pushDirection);
     const double push = std::max(0.0, params.pointStiffnessNPerM * depth + params.pointDampingNsPerM * approach);

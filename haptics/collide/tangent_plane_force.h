@@ -48,6 +48,26 @@ struct BodyMotion {
   glm::dvec3 angularVelocityWorld{0.0};  ///< rad/s
 };
 
+/// One contact as a limit on motion (sim/depth_limit.h): the shell point at `pointWorld`
+/// lies `depthM` deep along `intoVoxmapWorld`, the unit direction in which it would sink
+/// further into the voxmap object (the negated push direction). World frame, frame start.
+struct DepthRow {
+  glm::dvec3 pointWorld{0.0};       ///< m
+  glm::dvec3 intoVoxmapWorld{0.0};  ///< unit
+  double depthM = 0.0;              ///< tangent-plane depth d, m (may be negative)
+  double limitM = 0.0;              ///< the deepest mean depth its pair's rows may reach, m (set by the caller)
+  double floorM = 0.0;              ///< d₀: the sink's minDepthM, below which a row weighs nothing, m
+  int shellObject = 0;              ///< moving object index of the pointshell (set by the caller)
+  int voxmapObject = 0;             ///< moving object index of the voxmap, or −1: static (set by the caller)
+};
+
+/// Where tangentPlaneWrench writes the contacts that may limit this frame's motion: every
+/// contact in the force layer with depth above `minDepthM`, up to `rows.size()` of them.
+struct DepthRowSink {
+  std::span<DepthRow> rows;
+  double minDepthM = 0.0;  ///< m
+};
+
 /// Contact wrench on both objects of a pair, world frame; torques about each object's
 /// centre of mass.
 struct PairWrench {
@@ -60,13 +80,16 @@ struct PairWrench {
   double maxDepthM = 0.0;                ///< largest depth d, m
   std::uint32_t missingVoxels = 0;       ///< neighbour lookups of a paged voxmap that found it paged out
   glm::ivec3 firstMissingVoxel{0};       ///< the first of them
+  std::uint32_t depthRows = 0;           ///< rows written to the DepthRowSink
+  bool depthRowsOverflowed = false;      ///< more contacts qualified than the sink had room for
 };
 
 /// Sums the tangent-plane forces of `contacts` (from samplePoints with the same
 /// `params`) of `shell` (its object moving as `shellMotion`) in `voxmap` (its object
-/// moving as `voxmapMotion`).
+/// moving as `voxmapMotion`). With a `sink`, the contacts deep enough to limit the step
+/// are written to it too (their object indices and limit left to the caller).
 PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, const ContactParams& params,
                               const BodyMotion& shellMotion, const BodyMotion& voxmapMotion,
-                              std::span<const PointContact> contacts) noexcept;
+                              std::span<const PointContact> contacts, const DepthRowSink* sink = nullptr) noexcept;
 
 }  // namespace voxhap

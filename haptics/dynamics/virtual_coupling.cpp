@@ -41,9 +41,9 @@ void gainsFor(double inertia, double omegaN, double& stiffness, double& damping)
 
 void validateDeviceLimits(const DeviceLimits& limits, const std::string& deviceName) {
   auto check = [&](double value, const char* field, bool zeroAllowed) {
-    if (std::isnan(value) || value < 0.0 || (!zeroAllowed && value == 0.0)) {
-      throw Error(deviceName + ": device limit " + field + " must be " + (zeroAllowed ? "≥ 0" : "> 0") +
-                  ", got " + formatNumber(value));
+    if (!std::isfinite(value) || value < 0.0 || (!zeroAllowed && value == 0.0)) {
+      throw Error(deviceName + ": device limit " + field + " must be a finite number " +
+                  (zeroAllowed ? "≥ 0" : "> 0") + ", got " + formatNumber(value));
     }
   };
   check(limits.maxForceN, "maxForceN", true);

@@ -35,18 +35,19 @@ struct CouplingGains {
   double angularDampingNmsPerRad = 0.0;   ///< N·m·s/rad
 };
 
-/// What a haptic device can render. Infinite means no limit.
+/// What a haptic device can render; always finite. The defaults are those of the
+/// "scripted" device profile (device_profile.h): a motion script through a rigid handle.
 struct DeviceLimits {
-  double maxForceN = std::numeric_limits<double>::infinity();    ///< N, ≥ 0
-  double maxTorqueNm = std::numeric_limits<double>::infinity();  ///< N·m, ≥ 0
+  double maxForceN = 100.0;   ///< N, ≥ 0
+  double maxTorqueNm = 10.0;  ///< N·m, ≥ 0
   /// Highest coupling stiffness the device renders stably, N/m, > 0.
-  double maxLinearStiffnessNPerM = std::numeric_limits<double>::infinity();
+  double maxLinearStiffnessNPerM = 1e7;
   /// Highest rotational coupling stiffness the device renders stably, N·m/rad, > 0.
-  double maxAngularStiffnessNmPerRad = std::numeric_limits<double>::infinity();
+  double maxAngularStiffnessNmPerRad = 1e5;
 };
 
-/// Throws voxhap::Error naming `deviceName` and the field when a limit is NaN or negative
-/// (or a stiffness limit is zero).
+/// Throws voxhap::Error naming `deviceName` and the field when a limit is NaN, infinite
+/// or negative (or a stiffness limit is zero).
 void validateDeviceLimits(const DeviceLimits& limits, const std::string& deviceName);
 
 /// Natural frequency of the default coupling times the frame period, ω_n·dt (rad).

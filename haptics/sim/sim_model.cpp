@@ -61,6 +61,7 @@ SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxm
   model.dtS = options.dtS;
   model.gravityWorld = options.gravityWorld;
   model.staticVoxmap = std::move(staticVoxmap);
+  validateDeviceLimits(options.deviceLimits, "device");
   model.deviceLimits = options.deviceLimits;
   model.coherence = options.coherence;
   if (!(model.coherence.capacityTests >= 0.0) || !std::isfinite(model.coherence.capacityTests)) {

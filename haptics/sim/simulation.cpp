@@ -7,6 +7,7 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "haptics/coherence/max_travel.h"
 #include "haptics/collide/tangent_plane_force.h"
@@ -57,6 +58,10 @@ SimState makeSimState(const SimModel& model) {
     mostChunks = std::max(mostChunks, object.shell.chunkCount());
   }
   state.last.resize(model.objects.size());
+  state.beforeStep.resize(model.objects.size());
+  std::size_t rowCapacity = 0;
+  for (const PairModel& pair : model.pairs) rowCapacity += model.objects[static_cast<std::size_t>(pair.shellObject)].shell.size();
+  state.depthScratch = DepthLimitScratch(rowCapacity, model.pairs.size(), model.objects.size());
   state.travelBoundM.resize(model.objects.size());
   state.scratch.resize(largest);
   state.due.resize(largest);
@@ -229,6 +234,7 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
   const auto started = std::chrono::steady_clock::now();
   std::uint32_t testedInFrame = 0;
   std::uint32_t missing = 0;
+  std::size_t rowCount = 0;
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     const PairModel& pair = model.pairs[p];
     if (!state.pairFrames[p].inRange) {
@@ -243,10 +249,21 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
     ContactParams params = pair.params;
     params.forceLayer = state.forceLayer;
     const MovingObjectModel& shellObject = model.objects[static_cast<std::size_t>(pair.shellObject)];
+    // rows for the contacts that the step can take past their limit (depth_limit.h)
+    const double limitM = kDepthLimitVoxels * model.voxmapOf(pair).grid().voxelSizeM;
+    const DepthRowSink sink{std::span(state.depthScratch.rows).subspan(rowCount),
+                            limitM - state.pairFrames[p].relativeTravelBoundM};
     const PairWrench w = tangentPlaneWrench(shellObject.shell, model.voxmapOf(pair), params,
                                             motionOf(model, state, pair.shellObject),
                                             motionOf(model, state, pair.voxmapObject),
-                                            std::span(state.scratch.data(), found));
+                                            std::span(state.scratch.data(), found), &sink);
+    for (std::size_t r = rowCount; r < rowCount + w.depthRows; ++r) {
+      DepthRow& row = state.depthScratch.rows[r];
+      row.limitM = limitM;
+      row.shellObject = pair.shellObject;
+      row.voxmapObject = pair.voxmapObject;
+    }
+    rowCount += w.depthRows;
     missing += w.missingVoxels;
     if (w.missingVoxels > 0 && model.pagerOf(pair)) {
       const glm::ivec3 chunk = w.firstMissingVoxel >> kChunkEdgeLog2;
@@ -294,21 +311,40 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
     RigidBodyState& body = state.bodies[i];
     glm::dvec3 force = f.contactForceWorld + object.body.massKg * model.gravityWorld;
     glm::dvec3 torque = f.contactTorqueWorld;
-    CouplingWrench coupling;
     if (object.coupled && i < handles.size()) {
-      coupling = couplingWrench(object.gains, handles[i].poseWorld, handles[i].velocity.linearWorld,
-                                handles[i].velocity.angularWorld, object.body, body);
-      force += coupling.forceWorld;
-      torque += coupling.torqueWorld;
-      if (!state.suspensions.active) f.feedback = deviceFeedback(coupling, model.deviceLimits);
+      const CouplingWrench coupling = couplingWrench(object.gains, handles[i].poseWorld, handles[i].velocity.linearWorld,
+                                                     handles[i].velocity.angularWorld, object.body, body);
+      // the body feels what the device renders (negated), never more: a handle that leads
+      // far pulls with the device's largest force, not with a spring stretched without bound
+      const CouplingWrench felt = deviceFeedback(coupling, model.deviceLimits);
+      force -= felt.forceWorld;
+      torque -= felt.torqueWorld;
+      if (!state.suspensions.active) f.feedback = felt;
     }
-    const RigidBodyState before = body;
+    state.beforeStep[i] = body;
     integrate(object.body, body, force, torque, model.dtS);
     // an object without pairs has an infinite bound, which no scale makes finite
     const double bound = state.travelBoundM[i];
     f.maxTravelM = std::isinf(bound) ? bound : state.coherent.travelScale * bound;
-    f.travelLimited = limitTravel(before, body, object.shellRadiusM, f.maxTravelM);
+    f.travelLimited = limitTravel(state.beforeStep[i], body, object.shellRadiusM, f.maxTravelM);
     state.travelLimitedFrames += f.travelLimited ? 1 : 0;
+  }
+  state.depthLimit = limitDepths(model.objects, state.beforeStep, state.bodies, state.depthScratch, rowCount, model.dtS);
+  state.depthLimitedFrames += state.depthLimit.binding > 0 || state.depthLimit.scale < 1.0 ? 1 : 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    // what the limits refused is the contacts' push beyond their springs
+    const DepthLimitScratch::Delta& refused = state.depthScratch.deltas[i];
+    const RigidBodyModel& body = model.objects[i].body;
+    const double perH2 = 1.0 / (model.dtS * model.dtS);
+    ObjectFrame& f = state.last[i];
+    f.contactForceWorld -= body.massKg * perH2 * refused.refusedLinear;
+    const glm::dmat3 r = glm::mat3_cast(state.beforeStep[i].orientation);
+    f.contactTorqueWorld -= perH2 * (r * (body.inertiaBody * (glm::transpose(r) * refused.refusedAngular)));
+    // the projection moves points of the body by no more than it refused, but lever arms
+    // could carry a far point past MaxTravel: hold it to MaxTravel again (a scaled step
+    // still keeps every depth limit, depth_limit.h)
+    f.travelLimited = limitTravel(state.beforeStep[i], state.bodies[i], model.objects[i].shellRadiusM, f.maxTravelM) ||
+                      f.travelLimited;
   }
   ++state.frame;
   state.timeS = static_cast<double>(state.frame) * model.dtS;

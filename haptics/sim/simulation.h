@@ -11,7 +11,11 @@
 ///   4. its motion is limited to MaxTravel (at most half a voxel near contact, paper §5;
 ///      half a chunk when all its pairs are out of range or collapsed, §5.1), which the
 ///      user feels as viscosity;
-///   5. the device of each coupled object gets the negated coupling wrench, clamped.
+///   5. the step is projected onto the contacts' depth limits, so that no contact goes
+///      deeper than kDepthLimitVoxels past its tangent plane (depth_limit.h: why parts then
+///      never interpenetrate, however hard the handle pulls);
+///   6. the coupling wrench is saturated at the device's limits: the body feels exactly
+///      what the device renders, negated.
 /// A frame that needed voxels of a paged static voxmap that were not yet resident is
 /// suspended instead (paper §5.3): nothing moves, the devices get no force, and after
 /// kMaxSuspensionS of suspension the run stops (SimState::stopped).
@@ -27,6 +31,7 @@
 #include "haptics/coherence/pair_coherence.h"
 #include "haptics/collide/point_sampler.h"
 #include "haptics/device/scripted_device.h"
+#include "haptics/sim/depth_limit.h"
 #include "haptics/sim/sim_model.h"
 
 namespace voxhap {
@@ -89,6 +94,11 @@ struct SimState {
   std::vector<ObjectFrame> last;       ///< per moving object, the frame just stepped
   std::uint64_t pairsSkipped = 0;      ///< pair-frames out of range, in all
   std::uint64_t travelLimitedFrames = 0;  ///< object-frames that MaxTravel held back
+  /// The contacts' depth limits this frame (depth_limit.h), and the frames they bound.
+  DepthLimitFrame depthLimit;
+  std::uint64_t depthLimitedFrames = 0;
+  DepthLimitScratch depthScratch;        ///< room for every pair's contacts as depth rows
+  std::vector<RigidBodyState> beforeStep;  ///< per moving object, its state at frame start
   std::vector<PointContact> scratch;   ///< room for the largest pointshell's contacts
   std::vector<PairFrame> pairFrames;   ///< per pair
   std::vector<double> travelBoundM;    ///< per moving object, its MaxTravel bound this frame, m
