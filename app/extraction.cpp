@@ -9,6 +9,7 @@
 
 #include "haptics/collide/exact_penetration.h"
 #include "haptics/core/error.h"
+#include "haptics/scene/object_selection.h"
 #include "haptics/voxel/voxel_encoding.h"
 
 namespace voxhap::cli {
@@ -63,10 +64,10 @@ std::filesystem::path extractionScriptPath() {
 ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
                                const ExtractionOptions& options, Console& console) {
   const auto wallStart = std::chrono::steady_clock::now();
-  const SceneObject* actuator = scene.find(options.moving);
-  if (!actuator) throw Error(scene.sourceName + ": no object named '" + options.moving + "' to extract");
-
   const std::vector<std::string> moving = {options.moving};
+  const ObjectSelection selection = selectObjects(scene, moving);  // an object, or a group merged
+  const SceneObject* actuator = selection.picked[0];
+
   const SimModel model =
       buildSceneModel(scene, moving, options.model, console.progress(options.label + ": preparing voxels"));
   if (!model.staticVoxmap)
@@ -74,9 +75,8 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
   const Voxmap& staticVoxmap = *model.staticVoxmap;
 
   std::vector<const TriangleMesh*> staticMeshes;
-  for (const SceneObject& object : scene.objects) {
-    if (&object == actuator) continue;
-    for (const Part& part : object.parts) staticMeshes.push_back(&part.mesh);
+  for (const SceneObject* object : selection.rest) {
+    for (const Part& part : object->parts) staticMeshes.push_back(&part.mesh);
   }
   std::vector<glm::vec3> vertices;
   for (const Part& part : actuator->parts) {

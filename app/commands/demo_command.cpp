@@ -169,7 +169,7 @@ Command demoCommand() {
       {"penetration-every", 0, "N", "measure the exact penetration every N frames (default 1)"},
       {"script", 0, "FILE", "motion script of the handle (default assets/scripts/actuator-extract.txt)"},
       {"scene", 0, "SCENE", "a .gltf/.glb file or built-in scene name (default landing-gear)"},
-      {"move", 0, "NAME", "the object to pull out (default actuator)"},
+      {"move", 0, "NAME", "the object or group to pull out (default actuator)"},
       kCacheDirOption,
       kNoCacheOption,
       {"json", 0, "", "print one JSON summary on stdout instead of text"}};

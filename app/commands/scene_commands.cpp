@@ -70,7 +70,7 @@ int runGenerate(const CommandContext& c) {
 Command sceneCommand() {
   Command info;
   info.name = "info";
-  info.summary = "Describe a scene: objects, parts, triangles, bounds, closed or not, roles.";
+  info.summary = "Describe a scene: objects, groups, parts, triangles, bounds, closed or not, roles.";
   info.usage = "voxhap scene info SCENE [--json] [--seed N]";
   info.description =
       "SCENE is a .gltf or .glb file, or a built-in scene name (ball-and-socket,\n"
@@ -79,11 +79,13 @@ Command sceneCommand() {
       "consistently oriented when those two triangles walk it in opposite directions.\n"
       "Roles and merged objects come from the nodes' extras, e.g.\n"
       "  \"extras\": {\"voxhap\": {\"role\": \"dynamic\", \"object\": \"actuator\"}}\n"
-      "Without extras every mesh node is a static object of its own.\n\n"
+      "Without extras every mesh node is a static object of its own. A node with no\n"
+      "mesh and no extras that holds parts (a sub-assembly) is listed as a group:\n"
+      "`voxhap simulate --move GROUP` moves its objects as one rigid body.\n\n"
       "Examples:\n"
       "  voxhap scene info assets/ball-and-socket.glb\n"
       "  voxhap scene info landing-gear --json\n"
-      "  voxhap scene info -v my-assembly.gltf      # one line per part";
+      "  voxhap scene info -v my-assembly.gltf      # one line per part, every object of a group";
   info.options = {kJsonOption, kSeedOption};
   info.run = runInfo;
 

@@ -1,7 +1,10 @@
 #include "app/commands/scene_summary.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
+
+#include "haptics/scene/object_selection.h"
 
 namespace voxhap::cli {
 namespace {
@@ -22,6 +25,27 @@ std::string extentText(const Bounds& b) {
 std::string pad(const std::string& text, std::size_t width) {
   return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');
 }
+
+/// What a group holds, from its objects.
+struct GroupFigures {
+  std::uint64_t parts = 0;
+  std::uint64_t triangles = 0;
+  Bounds bounds;
+};
+
+GroupFigures groupFigures(const Scene& scene, const SceneGroup& group) {
+  GroupFigures f;
+  for (const std::size_t i : group.objects) {
+    const SceneObject& object = scene.objects[i];
+    f.parts += object.parts.size();
+    f.triangles += object.triangleCount();
+    f.bounds.add(object.bounds());
+  }
+  return f;
+}
+
+/// Members of a group named in the text table, at most this many.
+constexpr std::size_t kMembersShown = 6;
 
 }  // namespace
 
@@ -54,19 +78,37 @@ nlohmann::ordered_json sceneSummaryJson(const Scene& scene) {
     entry["parts"] = parts;
     objects.push_back(entry);
   }
+  nlohmann::ordered_json groups = nlohmann::ordered_json::array();
+  for (const SceneGroup& group : scene.groups) {
+    nlohmann::ordered_json members = nlohmann::ordered_json::array();
+    for (const std::size_t i : group.objects) members.push_back(scene.objects[i].name);
+    const GroupFigures f = groupFigures(scene, group);
+    const std::string problem = groupMoveProblem(scene, group);
+    nlohmann::ordered_json entry = {{"name", group.name},
+                                    {"objects", members},
+                                    {"parts", f.parts},
+                                    {"triangles", f.triangles},
+                                    {"bounds_m", boundsJson(f.bounds)},
+                                    {"movable", problem.empty()}};
+    if (!problem.empty()) entry["not_movable_because"] = problem;
+    groups.push_back(entry);
+  }
   return {{"scene", scene.sourceName},
           {"objects_count", scene.objects.size()},
+          {"groups_count", scene.groups.size()},
           {"triangles", scene.triangleCount()},
           {"static_triangles", scene.triangleCount(ObjectRole::Static)},
           {"dynamic_triangles", scene.triangleCount(ObjectRole::Dynamic)},
           {"bounds_m", boundsJson(scene.bounds())},
           {"objects", objects},
+          {"groups", groups},
           {"warnings", scene.warnings}};
 }
 
 void printSceneSummary(std::ostream& out, const Scene& scene, bool withParts) {
   out << "scene      " << scene.sourceName << "\n";
   out << "objects    " << scene.objects.size() << "\n";
+  if (!scene.groups.empty()) out << "groups     " << scene.groups.size() << " (--move a group: its objects as one)\n";
   out << "triangles  " << scene.triangleCount() << " (static " << scene.triangleCount(ObjectRole::Static)
       << ", dynamic " << scene.triangleCount(ObjectRole::Dynamic) << ")\n";
   out << "extent     " << extentText(scene.bounds()) << " m\n\n";
@@ -86,6 +128,19 @@ void printSceneSummary(std::ostream& out, const Scene& scene, bool withParts) {
           << (part.topology.closed() ? "" : "  open") << (part.topology.consistentlyOriented() ? "" : "  misoriented")
           << "\n";
     }
+  }
+  if (scene.groups.empty()) return;
+  out << "\n" << pad("group", 24) << pad("objects", 9) << pad("parts", 7) << pad("triangles", 11)
+      << pad("extent (m)", 24) << "holds\n";
+  for (const SceneGroup& group : scene.groups) {
+    const GroupFigures f = groupFigures(scene, group);
+    std::string members;
+    const std::size_t shown = withParts ? group.objects.size() : std::min(group.objects.size(), kMembersShown);
+    for (std::size_t k = 0; k < shown; ++k) members += (k > 0 ? ", " : "") + scene.objects[group.objects[k]].name;
+    if (shown < group.objects.size()) members += ", ... (" + std::to_string(group.objects.size() - shown) + " more)";
+    out << pad(group.name, 24) << pad(std::to_string(group.objects.size()), 9) << pad(std::to_string(f.parts), 7)
+        << pad(std::to_string(f.triangles), 11) << pad(extentText(f.bounds), 24) << members
+        << (groupMoveProblem(scene, group).empty() ? "" : "  (not movable: holds an object named by extras)") << "\n";
   }
 }
 

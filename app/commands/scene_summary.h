@@ -11,10 +11,12 @@
 namespace voxhap::cli {
 
 /// Objects (name, role, parts with colours, triangles, bounds in metres, closed,
-/// consistently oriented), totals by role, scene bounds, and the loader's warnings.
+/// consistently oriented), groups (name, objects, parts, triangles, bounds in metres,
+/// whether --move may name them), totals by role, scene bounds, and the loader's warnings.
 nlohmann::ordered_json sceneSummaryJson(const Scene& scene);
 
-/// The same figures as a table; `withParts` adds a line per part.
+/// The same figures as a table; `withParts` adds a line per part and names every
+/// object of a group.
 void printSceneSummary(std::ostream& out, const Scene& scene, bool withParts);
 
 }  // namespace voxhap::cli

@@ -119,7 +119,7 @@ Command simulateCommand() {
       "      --point-offset=-0.175mm --json\n"
       "  voxhap simulate peg-in-hole --move peg --script insert.txt --voxel-size 0.05mm --trace out.csv";
   simulate.options = {
-      {"move", 0, "NAME", "an object to move (repeatable)"},
+      {"move", 0, "NAME", "an object, or a group of the file (its objects as one), to move (repeatable)"},
       {"script", 0, "FILE", "motion script: one for all moving objects or one per --move"},
       {"voxel-size", 0, "LENGTH", "voxel size of the static scene, e.g. 0.35mm (default 1mm)"},
       {"point-spacing", 0, "LENGTH", "point spacing of the moving objects (default: the voxel size)"},

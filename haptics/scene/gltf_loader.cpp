@@ -477,9 +477,14 @@ private:
     }
 
     const glm::dmat4 world = parentWorld * localTransform(node, where);
-    if (std::optional<NodeSettings> own = readNodeSettings(node, name, where, scene_.warnings)) {
-      inherited = std::move(own);
-    }
+    std::optional<NodeSettings> own = readNodeSettings(node, name, where, scene_.warnings);
+    // a node with neither mesh nor settings, outside any object named by extras, groups
+    // what lies under it (a CAD sub-assembly); kept if it holds a part
+    const bool isGroup = node.mesh < 0 && !own && !inherited;
+    const std::size_t group = scene_.groups.size();
+    const std::size_t firstPlaced = objectOfPart_.size();
+    if (isGroup) scene_.groups.push_back({name, {}});
+    if (own) inherited = std::move(own);
     if (node.mesh >= 0) addMeshNode(node, name, where, world, inherited);
     if (!node.children.empty() && depth + 1 >= kMaxNodeDepth) {
       throw Error(where + ": its children would be level " + std::to_string(depth + 2) +
@@ -487,6 +492,12 @@ private:
                   " levels");
     }
     for (int child : node.children) visit(child, world, inherited, "node " + quoted(name), depth + 1);
+    if (isGroup) {
+      std::vector<std::size_t>& objects = scene_.groups[group].objects;
+      objects.assign(objectOfPart_.begin() + static_cast<std::ptrdiff_t>(firstPlaced), objectOfPart_.end());
+      std::sort(objects.begin(), objects.end());
+      objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
+    }
   }
 
   void addMeshNode(const tinygltf::Node& node, const std::string& name, const std::string& where,
@@ -557,7 +568,9 @@ private:
                                 " degenerate triangles dropped");
     }
     if (part.mesh.triangles.empty()) return;
-    objectFor(name, settings).parts.push_back(std::move(part));
+    const std::size_t object = objectFor(name, settings);
+    scene_.objects[object].parts.push_back(std::move(part));
+    objectOfPart_.push_back(object);
   }
 
   glm::vec4 materialColor(int materialIndex, const std::string& where) const {
@@ -572,35 +585,47 @@ private:
                      static_cast<float>(f[3]));
   }
 
-  SceneObject& objectFor(const std::string& nodeName, const std::optional<NodeSettings>& settings) {
+  /// The index in scene_.objects of the object a mesh node's part goes to.
+  std::size_t objectFor(const std::string& nodeName, const std::optional<NodeSettings>& settings) {
     if (settings) {
       const auto found = namedObjects_.find(settings->objectName);
-      if (found != namedObjects_.end()) return scene_.objects[found->second];
+      if (found != namedObjects_.end()) return found->second;
       namedObjects_.emplace(settings->objectName, scene_.objects.size());
-      scene_.objects.push_back({settings->objectName, settings->settings, {}});
-      return scene_.objects.back();
+      scene_.objects.push_back({settings->objectName, settings->settings, {}, true});
+      return scene_.objects.size() - 1;
     }
-    scene_.objects.push_back({nodeName, ObjectSettings{}, {}});
-    return scene_.objects.back();
+    scene_.objects.push_back({nodeName, ObjectSettings{}, {}, false});
+    return scene_.objects.size() - 1;
   }
 
-  /// Objects need unique names for `--move NAME`: later namesakes get " (2)", " (3)", ….
+  /// Objects and groups need unique names for `--move NAME`: later namesakes get " (2)",
+  /// " (3)", …; objects keep their names before groups do.
   void reportDuplicateNames() {
+    std::erase_if(scene_.groups, [](const SceneGroup& g) { return g.objects.empty(); });
     std::map<std::string, int> seen;
+    auto number = [&](std::string& name, std::size_t& renamed, std::string& names) {
+      for (int n = ++seen[name]; n > 1; n = ++seen[name]) {
+        const std::string numberedName = name + " (" + std::to_string(n) + ")";
+        if (seen.count(numberedName) == 0) {
+          name = numberedName;
+          ++seen[name];
+          if (++renamed <= 5) names += (renamed > 1 ? ", '" : "'") + name + "'";
+          return;
+        }
+      }
+    };
+    auto warn = [&](std::size_t renamed, const std::string& names, const char* what) {
+      if (renamed == 0) return;
+      scene_.warnings.push_back(file_ + ": " + std::to_string(renamed) + what + names + (renamed > 5 ? ", ..." : ""));
+    };
     std::size_t renamed = 0;
     std::string names;
-    for (SceneObject& object : scene_.objects) {
-      const int n = ++seen[object.name];
-      if (n > 1) {
-        object.name += " (" + std::to_string(n) + ")";
-        if (++renamed <= 5) names += (renamed > 1 ? ", '" : "'") + object.name + "'";
-      }
-    }
-    if (renamed > 0) {
-      scene_.warnings.push_back(file_ + ": " + std::to_string(renamed) +
-                                " objects share a name with an earlier one and were numbered: " + names +
-                                (renamed > 5 ? ", ..." : ""));
-    }
+    for (SceneObject& object : scene_.objects) number(object.name, renamed, names);
+    warn(renamed, names, " objects share a name with an earlier one and were numbered: ");
+    renamed = 0;
+    names.clear();
+    for (SceneGroup& group : scene_.groups) number(group.name, renamed, names);
+    warn(renamed, names, " groups share a name with an object or an earlier group and were numbered: ");
   }
 
   void reportTopology(const SceneObject& object) {
@@ -629,6 +654,7 @@ private:
   std::vector<bool> visited_;
   std::size_t nodesDone_ = 0;
   std::map<std::string, std::size_t> namedObjects_;
+  std::vector<std::size_t> objectOfPart_;  // per part placed, in node order, its object's index
 };
 
 }  // namespace

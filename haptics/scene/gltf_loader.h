@@ -10,7 +10,10 @@
 /// `role` is "static" (default) or "dynamic"; `object` names the logical object
 /// (nodes naming the same object merge into it; default: that node's name);
 /// `density` is in kg/m³. A mesh node with no such node above it is a static object
-/// of its own. Bad files throw `voxhap::Error` with one line that names the file and
+/// of its own. A node with no mesh and no such settings, on it or above it, that holds
+/// parts is a `SceneGroup` (a CAD sub-assembly): its name may be moved as one object
+/// (object_selection.h). Objects, then groups, that share a name are numbered " (2)", " (3)",
+/// … with a warning. Bad files throw `voxhap::Error` with one line that names the file and
 /// the node, mesh, accessor or field; nothing the loader skips goes unreported.
 
 #include <cstdint>

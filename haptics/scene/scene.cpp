@@ -101,4 +101,11 @@ const SceneObject* Scene::find(const std::string& name) const {
   return nullptr;
 }
 
+const SceneGroup* Scene::findGroup(const std::string& name) const {
+  for (const SceneGroup& group : groups) {
+    if (group.name == name) return &group;
+  }
+  return nullptr;
+}
+
 }  // namespace voxhap

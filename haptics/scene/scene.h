@@ -81,6 +81,9 @@ struct SceneObject {
   std::string name;
   ObjectSettings settings;
   std::vector<Part> parts;
+  /// Its parts were grouped by a node's `extras.voxhap` (false: one plain mesh node, or
+  /// an object made in code).
+  bool namedByExtras = false;
 
   std::uint64_t triangleCount() const;
   Bounds bounds() const;
@@ -88,10 +91,22 @@ struct SceneObject {
   bool consistentlyOriented() const;  ///< every part consistently oriented
 };
 
+/// A node of the file's hierarchy that holds parts without being an object itself: no
+/// mesh of its own, no `extras.voxhap`, and no ancestor with them (a CAD sub-assembly, e.g.
+/// a piston with its wrist pin). Moving a group merges the objects under it into one rigid
+/// body (object_selection.h).
+struct SceneGroup {
+  std::string name;  ///< the node's name; unique among the scene's objects and groups
+  /// Indices in Scene::objects of the objects with a part under the node, ascending.
+  std::vector<std::size_t> objects;
+};
+
 /// A whole scene: its objects and what the loader had to say about it.
 struct Scene {
   std::string sourceName;            ///< file path or generator name, for messages
   std::vector<SceneObject> objects;
+  /// The file's groups, parents before their children; empty for a scene made in code.
+  std::vector<SceneGroup> groups;
   std::vector<std::string> warnings;  ///< one line each; nothing the loader skipped is silent
 
   std::uint64_t triangleCount() const;
@@ -99,6 +114,8 @@ struct Scene {
   Bounds bounds() const;
   /// The object with this name, or nullptr.
   const SceneObject* find(const std::string& name) const;
+  /// The group with this name, or nullptr.
+  const SceneGroup* findGroup(const std::string& name) const;
 };
 
 }  // namespace voxhap

@@ -1,9 +1,8 @@
 #include "haptics/sim/scene_model.h"
 
-#include <algorithm>
-
 #include "haptics/core/error.h"
 #include "haptics/dynamics/mass_properties.h"
+#include "haptics/scene/object_selection.h"
 #include "haptics/voxel/voxel_cache.h"
 
 namespace voxhap {
@@ -19,23 +18,9 @@ Pointshell pointshellOf(const SceneObject& object, const PointshellOptions& opti
 
 SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& movingNames,
                          const SceneModelOptions& options, const ProgressFn& progress) {
-  std::vector<const SceneObject*> moving;
-  for (const std::string& name : movingNames) {
-    const SceneObject* object = scene.find(name);
-    if (!object) {
-      std::string known;
-      for (const SceneObject& o : scene.objects) known += (known.empty() ? "" : ", ") + o.name;
-      throw Error(scene.sourceName + ": no object named '" + name + "' (objects: " + known + ")");
-    }
-    if (std::find(moving.begin(), moving.end(), object) != moving.end()) {
-      throw Error(scene.sourceName + ": object '" + name + "' is moved twice");
-    }
-    moving.push_back(object);
-  }
-  std::vector<const SceneObject*> fixed;
-  for (const SceneObject& object : scene.objects) {
-    if (std::find(moving.begin(), moving.end(), &object) == moving.end()) fixed.push_back(&object);
-  }
+  const ObjectSelection selection = selectObjects(scene, movingNames);
+  const std::vector<const SceneObject*>& moving = selection.picked;
+  const std::vector<const SceneObject*>& fixed = selection.rest;
 
   const double steps = static_cast<double>(2 * moving.size() + 1);
   auto stage = [&](double k) -> ProgressFn {

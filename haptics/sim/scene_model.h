@@ -49,8 +49,9 @@ struct SceneModelOptions {
 };
 
 /// The model of `scene` with `movingNames` moving (each coupled to a handle) and every
-/// other object static. Throws voxhap::Error for an unknown or repeated name, or an
-/// object whose mesh is not closed.
+/// other object static. A name is an object or a group, whose objects then move merged
+/// as one (object_selection.h). Throws voxhap::Error for a name that selectObjects refuses
+/// (unknown, repeated, overlapping another), or a moving object whose mesh is not closed.
 SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& movingNames,
                          const SceneModelOptions& options, const ProgressFn& progress = {});
 

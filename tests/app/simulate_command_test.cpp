@@ -1,9 +1,11 @@
 #include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
+#include "support/gltf_fixtures.h"
 
 namespace voxhap::test {
 namespace {
@@ -68,6 +70,46 @@ TEST_F(SimulateCommand, UnknownObjectIsNamed) {
   const CliRun r = voxhap({"simulate", asset("ball-and-socket.glb"), "--move", "wrench", "--script", script});
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("wrench"), std::string::npos) << r.err;
+}
+
+TEST_F(SimulateCommand, MovesAGroupOfACadFileAsOneObject) {
+  // the piston (crown and pin, a group without extras) pushed 1 mm along x over the block
+  const std::string file = writeDoc(pistonAssemblyDoc(), dir_, "piston", BufferStorage::Glb).string();
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n0.05 1 0 0 0 0.001 0 0\n");
+  const CliRun r = voxhap({"simulate", file, "--move", "piston", "--script", script, "--voxel-size", "1mm",
+                           "--trace", "trace.csv", "--json"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["moving"], nlohmann::json::array({"piston"}));
+  EXPECT_EQ(summary["frames"], 50);
+  // one trace row a frame: crown and pin are one body with one pose, which follows the handle
+  std::ifstream trace(dir_ / "trace.csv");
+  std::string line;
+  std::getline(trace, line);
+  int rows = 0;
+  double lastTxM = 0.0;
+  for (; std::getline(trace, line); ++rows) {
+    std::vector<std::string> fields;
+    std::stringstream row(line);
+    for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+    ASSERT_GE(fields.size(), 10u) << line;
+    EXPECT_EQ(fields[2], "piston") << line;
+    lastTxM = std::stod(fields[7]);
+  }
+  EXPECT_EQ(rows, 50);
+  EXPECT_GT(lastTxM, 0.0005);  // the coupling lags the handle a little
+  EXPECT_LT(lastTxM, 0.0011);
+}
+
+TEST_F(SimulateCommand, GroupMistakesAreNamed) {
+  const std::string file = writeDoc(pistonAssemblyDoc(), dir_, "piston", BufferStorage::Glb).string();
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n");
+  CliRun r = voxhap({"simulate", file, "--move", "piston", "--move", "pin", "--script", script});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("'piston' and 'pin' both hold object 'pin'"), std::string::npos) << r.err;
+  r = voxhap({"simulate", file, "--move", "engine", "--script", script});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("objects: crown, pin, block; groups: piston (crown, pin)"), std::string::npos) << r.err;
 }
 
 TEST_F(SimulateCommand, BadVoxelSizeIsAUsageError) {

@@ -2,11 +2,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
+#include "support/gltf_fixtures.h"
 
 namespace {
 
@@ -86,6 +88,34 @@ TEST_F(VoxhapCli, SceneInfoJsonIsOneDocumentWithTheFigures) {
     }
   }
   EXPECT_TRUE(sawBall);
+}
+
+TEST_F(VoxhapCli, SceneInfoListsTheGroupsThatCanBeMoved) {
+  using voxhap::test::BufferStorage;
+  const fs::path file = voxhap::test::writeDoc(voxhap::test::pistonAssemblyDoc(), dir_, "piston", BufferStorage::Glb);
+  const CliRun json = voxhap({"scene", "info", file.string(), "--json"});
+  ASSERT_EQ(json.exitCode, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["objects_count"], 3);
+  EXPECT_EQ(j["groups_count"], 1);
+  ASSERT_EQ(j["groups"].size(), 1u);
+  const nlohmann::json& group = j["groups"][0];
+  EXPECT_EQ(group["name"], "piston");
+  EXPECT_EQ(group["objects"], nlohmann::json::array({"crown", "pin"}));
+  EXPECT_EQ(group["parts"], 2);
+  EXPECT_EQ(group["triangles"], 24);
+  EXPECT_EQ(group["movable"], true);
+  EXPECT_NEAR(group["bounds_m"]["extent"][0].get<double>(), 0.015, 1e-6);
+
+  const CliRun text = voxhap({"scene", "info", file.string()});
+  ASSERT_EQ(text.exitCode, 0) << text.err;
+  EXPECT_NE(text.out.find("groups     1"), std::string::npos) << text.out;
+  bool sawGroupRow = false;
+  std::istringstream lines(text.out);
+  for (std::string line; std::getline(lines, line);) {
+    sawGroupRow = sawGroupRow || (line.rfind("piston ", 0) == 0 && line.find("crown, pin") != std::string::npos);
+  }
+  EXPECT_TRUE(sawGroupRow) << text.out;
 }
 
 TEST_F(VoxhapCli, BuiltinNameResolvesToTheCommittedAsset) {

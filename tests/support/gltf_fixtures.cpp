@@ -167,6 +167,40 @@ nlohmann::json& GltfDoc::node(int index) {
   return json.at("nodes").at(static_cast<std::size_t>(index));
 }
 
+int GltfDoc::nodeNamed(const std::string& name) const {
+  const nlohmann::json& nodes = json.at("nodes");
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].value("name", std::string()) == name) return static_cast<int>(i);
+  }
+  throw std::out_of_range("no node named " + name);
+}
+
+GltfDoc pistonAssemblyDoc() {
+  GltfDoc doc;
+  auto coloured = [&](const glm::vec4& colour, const std::string& name) {
+    return doc.addMesh(unitCube(), doc.addMaterial(colour, name));
+  };
+  const int red = coloured({0.8f, 0.1f, 0.1f, 1.0f}, "red");
+  const int blue = coloured({0.1f, 0.2f, 0.9f, 1.0f}, "blue");
+  const int grey = coloured({0.5f, 0.5f, 0.5f, 1.0f}, "grey");
+  const int piston = doc.addNode({{"name", "piston"}});
+  const int crown = doc.addNode(
+      {{"name", "crown"}, {"mesh", red}, {"translation", {0.0, 0.0, 0.012}}, {"scale", {0.01, 0.01, 0.01}}});
+  const int pin = doc.addNode({{"name", "pin"},
+                               {"mesh", blue},
+                               {"translation", {0.011, 0.003, 0.015}},
+                               {"scale", {0.004, 0.004, 0.004}}});
+  doc.addChild(piston, crown);
+  doc.addChild(piston, pin);
+  doc.addRoot(piston);
+  const int block = doc.addNode({{"name", "block"},
+                                 {"mesh", grey},
+                                 {"translation", {-0.01, -0.01, 0.0}},
+                                 {"scale", {0.03, 0.03, 0.01}}});
+  doc.addRoot(block);
+  return doc;
+}
+
 GltfDoc singleMeshDoc(const MeshData& mesh, const std::string& name, int material) {
   GltfDoc doc;
   doc.addMeshNode(doc.addMesh(mesh, material), name);

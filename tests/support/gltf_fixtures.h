@@ -94,10 +94,18 @@ struct GltfDoc {
   void addChild(int parent, int child);
   /// The JSON of node `index`, to edit.
   nlohmann::json& node(int index);
+  /// The index of the first node named `name`; throws std::out_of_range when there is none.
+  int nodeNamed(const std::string& name) const;
 };
 
 /// A document with one root node `name` holding `mesh` (one TRIANGLES primitive).
 GltfDoc singleMeshDoc(const MeshData& mesh, const std::string& name = "cube", int material = -1);
+
+/// A CAD assembly untouched by Voxhap (no extras anywhere), in metres: a group node
+/// "piston" (no mesh) holding the mesh nodes "crown" (a 10 mm cube, red, from (0, 0, 12) mm)
+/// and "pin" (a 4 mm cube, blue, 1 mm beside the crown, from (11, 3, 15) mm), and a root mesh
+/// node "block" (30 × 30 × 10 mm, grey, from (−10, −10, 0) mm), 2 mm below them.
+GltfDoc pistonAssemblyDoc();
 
 /// `{"voxhap": {...}}` as node extras.
 nlohmann::json voxhapExtras(const nlohmann::json& settings);

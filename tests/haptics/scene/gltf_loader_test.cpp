@@ -542,6 +542,79 @@ TEST(GltfLoader, NumbersDuplicateObjectNamesWithAWarning) {
   EXPECT_TRUE(contains(warnings[0], "'box (2)', 'box (3)'")) << warnings[0];
 }
 
+// ---- groups: nodes without mesh or extras that hold parts ------------------
+
+TEST(GltfLoader, ANodeWithoutMeshOrExtrasHoldingPartsIsAGroup) {
+  TempDir dir;
+  const Scene scene = loadGltfScene(test::writeDoc(test::pistonAssemblyDoc(), dir.path(), "piston", BufferStorage::Glb));
+
+  ASSERT_EQ(scene.objects.size(), 3u);  // every mesh node is still an object of its own
+  EXPECT_EQ(scene.objects[0].name, "crown");
+  EXPECT_EQ(scene.objects[1].name, "pin");
+  EXPECT_EQ(scene.objects[2].name, "block");
+  for (const SceneObject& object : scene.objects) EXPECT_FALSE(object.namedByExtras) << object.name;
+  ASSERT_EQ(scene.groups.size(), 1u);
+  EXPECT_EQ(scene.groups[0].name, "piston");
+  EXPECT_EQ(scene.groups[0].objects, (std::vector<std::size_t>{0, 1}));
+  EXPECT_EQ(scene.findGroup("piston"), &scene.groups[0]);
+  EXPECT_EQ(scene.findGroup("crown"), nullptr);
+  EXPECT_EQ(scene.find("piston"), nullptr);
+  EXPECT_TRUE(scene.warnings.empty()) << joined(scene.warnings);
+}
+
+TEST(GltfLoader, NestedGroupsAreListedParentFirstAndEmptyOnesAreNot) {
+  // engine → (piston → crown, pin), rod; a lone "empty" node holds nothing
+  GltfDoc doc = test::pistonAssemblyDoc();
+  const int engine = doc.addNode({{"name", "engine"}});
+  const int piston = doc.nodeNamed("piston");
+  doc.json["scenes"][0]["nodes"] = nlohmann::json::array({engine, doc.nodeNamed("block")});
+  doc.addChild(engine, piston);
+  doc.addChild(engine, doc.addNode({{"name", "rod"}, {"mesh", doc.addMesh(test::tetrahedron())}}));
+  doc.addRoot(doc.addNode({{"name", "empty"}}));
+  TempDir dir;
+  const Scene scene = loadGltfScene(test::writeDoc(doc, dir.path(), "engine", BufferStorage::Glb));
+
+  ASSERT_EQ(scene.groups.size(), 2u);
+  EXPECT_EQ(scene.groups[0].name, "engine");
+  EXPECT_EQ(scene.groups[1].name, "piston");
+  const std::size_t crown = static_cast<std::size_t>(scene.find("crown") - scene.objects.data());
+  const std::size_t pin = static_cast<std::size_t>(scene.find("pin") - scene.objects.data());
+  const std::size_t rod = static_cast<std::size_t>(scene.find("rod") - scene.objects.data());
+  EXPECT_EQ(scene.groups[0].objects, (std::vector<std::size_t>{crown, pin, rod}));
+  EXPECT_EQ(scene.groups[1].objects, (std::vector<std::size_t>{crown, pin}));
+  EXPECT_EQ(scene.findGroup("empty"), nullptr);
+}
+
+TEST(GltfLoader, NodesInsideAnObjectNamedByExtrasAreNoGroups) {
+  // robot (extras) → wrist (no mesh) → finger: the wrist is part of the robot
+  GltfDoc doc;
+  const int robot = doc.addNode({{"name", "robot"}, {"extras", test::voxhapExtras({{"role", "dynamic"}})}});
+  const int wrist = doc.addNode({{"name", "wrist"}});
+  doc.addChild(robot, wrist);
+  doc.addChild(wrist, doc.addNode({{"name", "finger"}, {"mesh", doc.addMesh(test::tetrahedron())}}));
+  doc.addRoot(robot);
+  TempDir dir;
+  const Scene scene = loadGltfScene(test::writeDoc(doc, dir.path(), "robot", BufferStorage::Glb));
+
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_TRUE(scene.objects[0].namedByExtras);
+  EXPECT_TRUE(scene.groups.empty());
+}
+
+TEST(GltfLoader, AGroupNamedLikeAnObjectIsNumberedWithAWarning) {
+  GltfDoc doc = test::pistonAssemblyDoc();
+  doc.node(doc.nodeNamed("piston"))["name"] = "block";
+  TempDir dir;
+  const Scene scene = loadGltfScene(test::writeDoc(doc, dir.path(), "clash", BufferStorage::Glb));
+
+  ASSERT_NE(scene.find("block"), nullptr);  // the object keeps its name
+  ASSERT_EQ(scene.groups.size(), 1u);
+  EXPECT_EQ(scene.groups[0].name, "block (2)");
+  const std::vector<std::string> warnings = warningsWith(scene, "groups share a name");
+  ASSERT_EQ(warnings.size(), 1u) << joined(scene.warnings);
+  EXPECT_TRUE(contains(warnings[0], "'block (2)'")) << warnings[0];
+}
+
 // ---- topology ---------------------------------------------------------------
 
 TEST(GltfLoader, CubeIsClosedAndConsistentlyOriented) {
