@@ -99,7 +99,7 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
   const auto frames = static_cast<std::uint64_t>(std::llround(r.durationS / model.dtS));
   const std::uint64_t every = std::max<std::uint64_t>(options.penetrationEvery, 1);
 
-  ScriptedDevice device(script);
+  ScriptedDevice device(script, model.deviceLimits);
   HapticDevice* devices[] = {&device};
   SimState state = makeSimState(model);
   bool clear = false;

@@ -10,6 +10,7 @@
 #include "app/cache_options.h"
 #include "app/cli/command.h"
 #include "haptics/core/error.h"
+#include "haptics/device/device_profile.h"
 #include "haptics/voxel/voxel_cache.h"
 
 namespace voxhap::cli {
@@ -19,6 +20,9 @@ const OptionSpec kVoxelMemoryOption{"voxel-memory", 0, "SIZE",
                                     "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache"};
 const OptionSpec kBruteForceOption{"brute-force", 0, "",
                                    "test every point every frame (no time-critical sampling), for comparison"};
+const OptionSpec kDeviceProfileOption{"device-profile", 0, "NAME",
+                                      "the device's force, torque and stiffness limits, one of: " +
+                                          deviceProfileNames() + " (default scripted)"};
 const OptionSpec kNoDriftingOption{"no-drifting", 0, "",
                                    "look every due point up in the voxmap (no point drifting, paper §5.2)"};
 
@@ -45,6 +49,13 @@ SceneModelOptions sceneModelOptionsFromArgs(const ParsedArgs& args, Console& con
   if (const auto capacity = args.value("capacity")) {
     options.sim.coherence.capacityTests = static_cast<double>(parseUnsigned(*capacity, "capacity"));
     if (options.sim.coherence.capacityTests < 1) throw UsageError("--capacity wants at least one point test");
+  }
+  if (const auto profile = args.value("device-profile")) {
+    try {
+      options.sim.deviceLimits = deviceProfile(*profile).limits;
+    } catch (const Error& e) {
+      throw UsageError(std::string("--device-profile: ") + e.what());
+    }
   }
   const CacheOptions cache = voxelCacheOptions(args);
   useVoxelCache(options, cache, console);

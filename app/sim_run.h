@@ -25,11 +25,13 @@ extern const OptionSpec kCapacityOption;      ///< --capacity N
 extern const OptionSpec kVoxelMemoryOption;   ///< --voxel-memory SIZE
 extern const OptionSpec kBruteForceOption;    ///< --brute-force
 extern const OptionSpec kNoDriftingOption;    ///< --no-drifting
+extern const OptionSpec kDeviceProfileOption;  ///< --device-profile NAME
 
 /// SceneModelOptions from the options a command declares (any it does not declare are
 /// simply absent): --voxel-size (default `defaultVoxelSizeM`), --point-spacing (default
 /// `defaultPointSpacingM`, else the voxel size), --point-offset, --point-layer,
-/// --no-awareness, --pre-contact-damping, --brute-force, --no-drifting, --capacity, and the voxel cache
+/// --no-awareness, --pre-contact-damping, --brute-force, --no-drifting, --capacity,
+/// --device-profile, and the voxel cache
 /// (--cache-dir, --no-cache), whose warnings go to `console` (which must outlive the
 /// options). Throws UsageError on a bad value.
 SceneModelOptions sceneModelOptionsFromArgs(const ParsedArgs& args, Console& console,

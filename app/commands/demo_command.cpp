@@ -165,6 +165,7 @@ Command demoCommand() {
       kCapacityOption,
       kVoxelMemoryOption,
       kBruteForceOption,
+      kDeviceProfileOption,
       {"duration", 0, "SECONDS", "simulated time (default: the whole script, 18 s)"},
       {"penetration-every", 0, "N", "measure the exact penetration every N frames (default 1)"},
       {"script", 0, "FILE", "motion script of the handle (default assets/scripts/actuator-extract.txt)"},

@@ -29,12 +29,13 @@ int runSimulate(const CommandContext& c) {
     throw UsageError("give one --script for all moving objects or one per --move (" + std::to_string(moving.size()) +
                      "), not " + std::to_string(scripts.size()));
   }
+  const SceneModelOptions options = sceneModelOptionsFromArgs(c.args, c.console, kDefaultVoxelSizeM);
   std::vector<std::unique_ptr<ScriptedDevice>> devices;
   for (std::size_t i = 0; i < moving.size(); ++i) {
-    devices.push_back(std::make_unique<ScriptedDevice>(loadMotionScript(scripts[scripts.size() == 1 ? 0 : i])));
+    devices.push_back(std::make_unique<ScriptedDevice>(loadMotionScript(scripts[scripts.size() == 1 ? 0 : i]),
+                                                       options.sim.deviceLimits));
   }
 
-  const SceneModelOptions options = sceneModelOptionsFromArgs(c.args, c.console, kDefaultVoxelSizeM);
   const Scene scene = loadScene(c.args.positionals[0], kDefaultSeed, c.console);
   const SimModel model = buildSceneModel(scene, moving, options, c.console.progress("preparing voxels"));
 
@@ -131,6 +132,7 @@ Command simulateCommand() {
       kVoxelMemoryOption,
       kBruteForceOption,
       kNoDriftingOption,
+      kDeviceProfileOption,
       {"duration", 0, "SECONDS", "simulated time (default: the longest script)"},
       {"trace", 0, "FILE.csv", "write the per-frame trace"},
       kCacheDirOption,

@@ -30,21 +30,17 @@ constexpr std::array kProfiles{
 
 std::span<const DeviceProfile> deviceProfiles() noexcept { return kProfiles; }
 
+std::string deviceProfileNames() {
+  std::string names;
+  for (const DeviceProfile& profile : kProfiles) names += (names.empty() ? "" : ", ") + std::string(profile.name);
+  return names;
+}
+
 const DeviceProfile& deviceProfile(std::string_view name) {
   for (const DeviceProfile& profile : kProfiles) {
     if (profile.name == name) return profile;
   }
-  std::string names;
-  for (const DeviceProfile& profile : kProfiles) names += (names.empty() ? "" : ", ") + std::string(profile.name);
-  throw Error("unknown device profile '" + std::string(name) + "' (known: " + names + ")");
-}
-
-std::string deviceProfileHelp() {
-  std::string help;
-  for (const DeviceProfile& profile : kProfiles) {
-    help += std::string(profile.name) + ": " + std::string(profile.description) + "\n";
-  }
-  return help;
+  throw Error("unknown device profile '" + std::string(name) + "' (known: " + deviceProfileNames() + ")");
 }
 
 }  // namespace voxhap

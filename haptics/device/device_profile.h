@@ -31,7 +31,7 @@ inline constexpr std::string_view kDefaultDeviceProfile = "scripted";
 /// The profile called `name`; throws voxhap::Error listing the names when there is none.
 const DeviceProfile& deviceProfile(std::string_view name);
 
-/// "name (description)" for every profile, one per line, for --help.
-std::string deviceProfileHelp();
+/// The profiles' names, comma-separated, for --help and errors.
+std::string deviceProfileNames();
 
 }  // namespace voxhap
