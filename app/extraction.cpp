@@ -7,7 +7,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "haptics/collide/exact_penetration.h"
 #include "haptics/core/error.h"
 #include "haptics/scene/object_selection.h"
 #include "haptics/voxel/voxel_encoding.h"
@@ -74,15 +73,10 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
     throw Error(scene.sourceName + ": nothing static to extract " + options.moving + " from");
   const Voxmap& staticVoxmap = *model.staticVoxmap;
 
-  std::vector<const TriangleMesh*> staticMeshes;
-  for (const SceneObject* object : selection.rest) {
-    for (const Part& part : object->parts) staticMeshes.push_back(&part.mesh);
-  }
-  std::vector<glm::vec3> vertices;
-  for (const Part& part : actuator->parts) {
-    vertices.insert(vertices.end(), part.mesh.positionsWorld.begin(), part.mesh.positionsWorld.end());
-  }
-  ExactPenetration truth(staticMeshes, vertices);  // local frame = the scene file's placement
+  const double spacingM =
+      options.probeSpacingM > 0.0 ? options.probeSpacingM : options.model.staticVoxelSizeM / kProbesPerVoxel;
+  ExactChecks truth(scene, model, options.model, spacingM,
+                    console.progress(options.label + ": preparing probes"));
 
   // the path of the actuator's centre, through the script's keyframes
   const Bounds bounds = actuator->bounds();
@@ -93,7 +87,8 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
 
   ExtractionResult r;
   r.points = model.objects[0].shell.positionsLocal.size();
-  r.verticesChecked = truth.vertexCount();
+  r.probesChecked = truth.movingProbes(0);
+  r.probeSpacingM = spacingM;
   r.durationS = options.durationS.value_or(script.durationS());
   r.pathLengthM = path.length();
   const auto frames = static_cast<std::uint64_t>(std::llround(r.durationS / model.dtS));
@@ -109,19 +104,7 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
               const bool last = f + 1 == frames;
               const Pose pose = objectPose(model, state, 0);
               if (f % every == 0 || last) {
-                const PenetrationSample s = truth.measure(pose, staticVoxmap);
-                ++r.penetrationChecks;
-                r.exactVertexTests += s.candidates;
-                r.framesWithPenetration += s.inside > 0 ? 1 : 0;
-                if (s.clearanceM < r.minClearanceM) {
-                  r.minClearanceM = s.clearanceM;
-                  r.minClearanceAtS = state.timeS;
-                }
-                if (s.depthM > r.maxPenetrationM) {
-                  r.maxPenetrationM = s.depthM;
-                  r.maxPenetrationAtS = state.timeS;
-                  r.maxPenetrationWorld = s.deepestWorld;
-                }
+                truth.check(model, state, f, r.exact, r.exact.checks % kClearanceEveryChecks == 0 || last);
               }
               if (f % kClearCheckEveryFrames == 0 || last) {
                 const bool nowClear = clearOfEverything(model.objects[0].shell, pose, staticVoxmap);

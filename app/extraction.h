@@ -2,9 +2,9 @@
 /// The landing gear's actuator extraction (paper §7), run headless for `voxhap demo` and
 /// `voxhap bench extraction`: the actuator follows a motion script out of its clevises
 /// and out of the gear at 1 kHz, while the run measures what the engine cannot tell
-/// about itself: the exact penetration of the actuator's mesh vertices into the static
-/// meshes (Embree ground truth, haptics/collide/exact_penetration.h), how far along the
-/// path the actuator got compared with its handle, and when it came clear.
+/// about itself: the exact penetration between the actuator's and the static meshes, both
+/// ways, faces included (Embree ground truth, haptics/collide/exact_penetration.h), how
+/// far along the path the actuator got compared with its handle, and when it came clear.
 
 #include <cstdint>
 #include <filesystem>
@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/console.h"
+#include "app/exact_checks.h"
 #include "app/sim_run.h"
 #include "haptics/device/motion_script.h"
 #include "haptics/scene/scene.h"
@@ -28,6 +29,12 @@ inline constexpr const char* kActuatorName = "actuator";
 /// Default resolution of the extraction (paper Table 1's coarser landing-gear row), m.
 inline constexpr double kExtractionVoxelSizeM = 2.5e-3;
 inline constexpr double kExtractionPointSpacingM = 1.0e-3;
+/// Frames between two exact penetration measurements by default (the last frame is always
+/// measured).
+inline constexpr std::uint64_t kPenetrationEveryFrames = 1;
+/// The exact clearance is measured at every this many exact penetration measurements
+/// (and the last): near a wide parallel gap it costs twice the penetration.
+inline constexpr std::uint64_t kClearanceEveryChecks = 10;
 /// Frames between two checks of whether the actuator is clear of the gear.
 inline constexpr std::uint64_t kClearCheckEveryFrames = 100;
 
@@ -38,7 +45,10 @@ struct ExtractionOptions {
   std::string moving = kActuatorName;  ///< the object to pull out
   SceneModelOptions model;             ///< resolution, sampling, capacity, cache
   std::optional<double> durationS;     ///< simulated time; default: the script's
-  std::uint64_t penetrationEvery = 1;  ///< measure the exact penetration every N frames (≥ 1)
+  std::uint64_t penetrationEvery =
+      kPenetrationEveryFrames;  ///< measure the exact penetration every N frames (≥ 1)
+  /// Probe spacing of the exact penetration, m; 0: the static voxel size / kProbesPerVoxel.
+  double probeSpacingM = 0.0;
   std::string label = "extraction";    ///< progress bar label prefix
 };
 
@@ -47,21 +57,13 @@ struct ExtractionResult {
   FrameStats stats;
   SimState finalState;                ///< the engine's counters (missed deadlines, …)
   std::uint64_t points = 0;           ///< the actuator's pointshell
-  std::uint64_t verticesChecked = 0;  ///< distinct actuator mesh vertices
   double durationS = 0.0;             ///< simulated, s
   double wallS = 0.0;                 ///< building the model (cache loads) and running the frames, s
   double framesWallS = 0.0;           ///< the frame loop with its measurements, s
   // ground truth
-  double maxPenetrationM = 0.0;             ///< deepest actuator vertex inside static geometry, m
-  double maxPenetrationAtS = 0.0;           ///< when, s (0 when nothing penetrated)
-  glm::dvec3 maxPenetrationWorld{0.0};      ///< where, world, m
-  std::uint64_t penetrationChecks = 0;      ///< frames measured
-  std::uint64_t framesWithPenetration = 0;  ///< of which with a vertex inside
-  std::uint64_t exactVertexTests = 0;  ///< vertices the voxmap filter passed on to the inside test, in all
-  /// Least exact clearance of an actuator vertex outside the static meshes, m (infinite:
-  /// never within a few voxels; see PenetrationSample::clearanceM).
-  double minClearanceM = std::numeric_limits<double>::infinity();
-  double minClearanceAtS = 0.0;  ///< when, s
+  ExactCheckSummary exact;          ///< the exact penetration checks (one pair: actuator / static)
+  std::uint64_t probesChecked = 0;  ///< probes on the actuator's surface
+  double probeSpacingM = 0.0;       ///< their spacing, m
   // progress along the path, arc length of the actuator's centre along the script's path
   double pathLengthM = 0.0;        ///< of the whole script
   double handleProgressM = 0.0;    ///< where the handle ended

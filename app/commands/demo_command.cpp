@@ -11,10 +11,10 @@
 #include "app/cli/command.h"
 #include "app/cli/number_format.h"
 #include "app/commands/commands.h"
+#include "app/exact_checks.h"
 #include "app/extraction.h"
 #include "app/scene_source.h"
 #include "app/sim_run.h"
-#include "haptics/collide/exact_penetration.h"
 
 namespace voxhap::cli {
 namespace {
@@ -34,6 +34,8 @@ ExtractionOptions extractionOptionsFromArgs(const ParsedArgs& args, Console& con
     options.penetrationEvery = parseUnsigned(*every, "penetration-every");
     if (options.penetrationEvery < 1) throw UsageError("--penetration-every wants at least 1 frame");
   }
+  if (const auto spacing = args.value("probe-spacing"))
+    options.probeSpacingM = parseLengthM(*spacing, "probe-spacing");
   return options;
 }
 
@@ -61,18 +63,24 @@ int runDemo(const CommandContext& c) {
     const nlohmann::ordered_json frameSummary = frameStatsJson(stats, r.finalState);
     for (const auto& [key, value] : frameSummary.items()) j[key] = value;
     j["frames_within_1ms"] = deadlinesMet;
-    j["max_penetration_m"] = r.maxPenetrationM;
-    j["max_penetration_at_s"] = r.maxPenetrationAtS;
-    j["max_penetration_world_m"] = {r.maxPenetrationWorld.x, r.maxPenetrationWorld.y,
-                                    r.maxPenetrationWorld.z};
-    j["min_clearance_m"] = std::isinf(r.minClearanceM) ? nlohmann::ordered_json(nullptr)
-                                                       : nlohmann::ordered_json(r.minClearanceM);
-    j["min_clearance_at_s"] = r.minClearanceAtS;
+    const ExactCheckSummary& e = r.exact;
+    j["max_penetration_m"] = e.maxDepthM;
+    j["max_penetration_at_s"] = e.maxDepthAtS;
+    j["max_penetration_frame"] = e.maxDepthFrame;
+    j["max_penetration_world_m"] = {e.maxDepthWorld.x, e.maxDepthWorld.y, e.maxDepthWorld.z};
+    j["max_penetration_into"] =
+        e.maxDepthM > 0.0 ? nlohmann::ordered_json(e.maxDepthInto) : nlohmann::ordered_json(nullptr);
+    j["min_clearance_m"] = std::isinf(e.minClearanceM) ? nlohmann::ordered_json(nullptr)
+                                                       : nlohmann::ordered_json(e.minClearanceM);
+    j["min_clearance_at_s"] = e.minClearanceAtS;
     j["penetration_every_frames"] = options.penetrationEvery;
-    j["penetration_checks"] = r.penetrationChecks;
-    j["frames_with_penetration"] = r.framesWithPenetration;
-    j["vertices_checked"] = r.verticesChecked;
-    j["exact_vertex_tests"] = r.exactVertexTests;
+    j["penetration_checks"] = e.checks;
+    j["frames_with_penetration"] = e.framesWithPenetration;
+    j["probe_spacing_m"] = r.probeSpacingM;
+    j["probes_checked"] = r.probesChecked;
+    j["near_probes"] = e.nearProbes;
+    j["exact_probe_tests"] = e.candidates;
+    j["exact_wall_s"] = e.wallS;
     j["path_length_m"] = r.pathLengthM;
     j["handle_progress_m"] = r.handleProgressM;
     j["actuator_progress_m"] = r.actuatorProgressM;
@@ -92,18 +100,21 @@ int runDemo(const CommandContext& c) {
         << ")\nscript           " << scriptFile << "\n";
   printFrameStats(c.out, stats, r.finalState, options.model.sim.coherence.enabled);
   c.out << "within 1 ms      " << deadlinesMet << " of " << stats.frames() << " frames\n"
-        << "max penetration  " << mm(r.maxPenetrationM, 3) << " (exact, deepest mesh vertex";
-  if (r.maxPenetrationM > 0.0) {
-    c.out << ", at t = " << fixed(r.maxPenetrationAtS, 3) << " s at (" << fixed(r.maxPenetrationWorld.x, 3)
-          << ", " << fixed(r.maxPenetrationWorld.y, 3) << ", " << fixed(r.maxPenetrationWorld.z, 3) << ") m";
+        << "max penetration  " << mm(r.exact.maxDepthM, 3) << " (exact, deepest surface probe";
+  if (r.exact.maxDepthM > 0.0) {
+    c.out << ", " << r.exact.maxDepthInto << ", at t = " << fixed(r.exact.maxDepthAtS, 3) << " s at ("
+          << fixed(r.exact.maxDepthWorld.x, 3) << ", " << fixed(r.exact.maxDepthWorld.y, 3) << ", "
+          << fixed(r.exact.maxDepthWorld.z, 3) << ") m";
   }
-  c.out << "; " << r.framesWithPenetration << " of " << r.penetrationChecks
+  c.out << "; " << r.exact.framesWithPenetration << " of " << r.exact.checks
         << " frames checked had one inside)\n"
         << "min clearance    "
-        << (std::isinf(r.minClearanceM)
+        << (std::isinf(r.exact.minClearanceM)
                 ? std::string("more than ") + std::to_string(voxhap::kClearanceVoxels) + " voxels"
-                : mm(r.minClearanceM, 3) + " at t = " + fixed(r.minClearanceAtS, 3) + " s")
-        << " (exact, actuator mesh vertex to static surface)\n"
+                : mm(r.exact.minClearanceM, 3) + " at t = " + fixed(r.exact.minClearanceAtS, 3) + " s")
+        << " (exact, between the actuator's and the static surfaces)\n"
+        << "exact probes     " << r.probesChecked << " on the actuator, " << mm(r.probeSpacingM, 3)
+        << " apart, and the static surface near it; " << fixed(r.exact.wallS, 1) << " s measuring\n"
         << "along the path   actuator " << mm(r.actuatorProgressM, 1) << ", handle "
         << mm(r.handleProgressM, 1) << " of " << mm(r.pathLengthM, 1) << "; " << mm(r.finalLagM, 1)
         << " apart at the end\n"
@@ -123,8 +134,8 @@ Command demoCommand() {
   demo.summary = "The main job: pull the actuator out of the built-in landing gear, headless, and report.";
   demo.usage =
       "voxhap demo [--voxel-size LENGTH] [--point-spacing LENGTH] [--capacity N] [--brute-force]\n"
-      "       [--duration SECONDS] [--penetration-every N] [--script FILE] [--scene SCENE --move NAME]\n"
-      "       [--cache-dir DIR] [--no-cache] [--json]";
+      "       [--duration SECONDS] [--penetration-every N] [--probe-spacing LENGTH] [--script FILE]\n"
+      "       [--scene SCENE --move NAME] [--cache-dir DIR] [--no-cache] [--json]";
   demo.description =
       "The paper's maintenance task (§7): the hydraulic actuator of the built-in landing gear\n"
       "(generated on first use and cached under $VOXHAP_CACHE_DIR, $XDG_CACHE_HOME/voxhap or\n"
@@ -147,14 +158,20 @@ Command demoCommand() {
       "With --json the same figures as one document; completion_s is the time from which it\n"
       "stayed clear when it came out (null otherwise), clear_from_s the same whether or not it\n"
       "reached the path's end.\n\n"
-      "Exact penetration: the deepest any actuator mesh vertex gets inside a static part,\n"
-      "measured with Embree outside the timed frame (ray parity per part, three rays voting;\n"
-      "depth = distance to the nearest static surface). To keep this cheap, the static voxmap\n"
-      "filters first: a vertex in a free-space voxel is outside, so only vertices in surface or\n"
-      "interior voxels are tested exactly, every frame by default (--penetration-every N checks\n"
-      "every Nth frame and the last). Vertices up to 4 voxels out get their exact distance to\n"
-      "the static surface instead: the min clearance. Static vertices near or inside the\n"
-      "actuator are not measured (a static edge may come closer than any actuator vertex).\n\n"
+      "Exact penetration: the deepest any point of the actuator's surface gets inside a static\n"
+      "part, or any point of the static surface inside the actuator, measured with Embree on\n"
+      "the meshes outside the timed frame. Both surfaces are sampled by probes a quarter of\n"
+      "a static voxel apart (--probe-spacing), on every triangle's vertices, edges and\n"
+      "interior, so that an edge or a face cutting in between vertices is seen; the static\n"
+      "surface only where the actuator comes near it. A probe is inside when rays from it\n"
+      "cross a part an odd number of times (three rays voting); its depth is its distance to\n"
+      "the other surface. To keep this cheap, voxmaps filter first (the static scene's, and\n"
+      "the actuator's at the point spacing, voxelized through the cache): a probe in a\n"
+      "free-space voxel of the other body is outside, one in an interior voxel inside, and\n"
+      "only probes in surface voxels take the vote; groups of probes far from the other body\n"
+      "are skipped at once. Measured every frame by default (--penetration-every N checks\n"
+      "every Nth frame and the last). Vertex and edge probes up to 4 voxels out get their\n"
+      "exact distance to the other surface instead: the min clearance.\n\n"
       "Examples:\n"
       "  voxhap demo\n"
       "  voxhap demo --voxel-size 1.25mm --point-spacing 0.7mm --json\n"
@@ -168,6 +185,8 @@ Command demoCommand() {
       kDeviceProfileOption,
       {"duration", 0, "SECONDS", "simulated time (default: the whole script, 18 s)"},
       {"penetration-every", 0, "N", "measure the exact penetration every N frames (default 1)"},
+      {"probe-spacing", 0, "LENGTH",
+       "spacing of the exact penetration's surface probes (default: voxel size / 4)"},
       {"script", 0, "FILE", "motion script of the handle (default assets/scripts/actuator-extract.txt)"},
       {"scene", 0, "SCENE", "a .gltf/.glb file or built-in scene name (default landing-gear)"},
       {"move", 0, "NAME", "the object or group to pull out (default actuator)"},

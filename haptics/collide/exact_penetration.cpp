@@ -1,9 +1,17 @@
 #include "haptics/collide/exact_penetration.h"
 
 #include <algorithm>
-#include <tuple>
+#include <cmath>
+#include <optional>
+#include <span>
 
 #include <glm/geometric.hpp>
+
+#include "haptics/collide/probe_cells.h"
+#include "haptics/collide/surface_probes.h"
+#include "haptics/core/error.h"
+#include "haptics/geometry/embree_scene.h"
+#include "haptics/voxel/voxel_encoding.h"
 
 namespace voxhap {
 namespace {
@@ -16,38 +24,130 @@ const glm::dvec3 kVoteDirections[] = {
     glm::normalize(glm::dvec3(0.0117, -0.0081, 1.0)),
 };
 
-}  // namespace
+/// Clearance candidates are taken nearest first, in this many buckets of lower bound.
+constexpr std::size_t kClearanceBuckets = 64;
 
-ExactPenetration::ExactPenetration(std::span<const TriangleMesh* const> staticMeshes,
-                                   std::span<const glm::vec3> verticesLocal)
-    : meshes_(staticMeshes.begin(), staticMeshes.end()),
-      scene_(staticMeshes),
-      verticesLocal_(verticesLocal.begin(), verticesLocal.end()) {
-  auto byXyz = [](const glm::vec3& a, const glm::vec3& b) {
-    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
-  };
-  std::sort(verticesLocal_.begin(), verticesLocal_.end(), byXyz);
-  verticesLocal_.erase(std::unique(verticesLocal_.begin(), verticesLocal_.end()), verticesLocal_.end());
-  Bounds bounds;
-  for (const TriangleMesh* mesh : meshes_) {
-    for (const glm::vec3& p : mesh->positionsWorld) bounds.add(glm::dvec3(p));
-  }
-  rayLengthM_ = 2.0 * glm::length(bounds.extent()) + 1.0;
+/// Probe cells span at most this many probe spacings along an edge.
+constexpr double kCellSpacings = 8.0;
+
+/// Distance from `p` to the box `b` (0 inside), m.
+double distanceToBox(const glm::dvec3& p, const Bounds& b) {
+  const glm::dvec3 below = glm::max(b.min - p, glm::dvec3(0.0));
+  const glm::dvec3 above = glm::max(p - b.max, glm::dvec3(0.0));
+  return glm::length(glm::max(below, above));
 }
 
-bool ExactPenetration::inside(const glm::dvec3& pointWorld) {
+/// What the filter says of one probe, in the target body's frame.
+enum class Verdict : std::uint8_t {
+  Outside,  ///< outside and beyond the clearance range
+  Near,     ///< outside, within the clearance range
+  Inside,   ///< inside (an interior voxel): depth only
+  Unknown,  ///< the vote decides
+};
+
+struct Classified {
+  Verdict verdict;
+  double lowerBoundM;  ///< Near: the probe is at least this far from the target's surface
+  double depthHintM;   ///< Inside, Unknown: a first search radius for its depth
+};
+
+/// A probe outside the other body whose distance may be the clearance.
+struct ClearanceCandidate {
+  double lowerBoundM;
+  glm::dvec3 pointTarget;  ///< in the target body's frame
+  std::uint8_t target;     ///< 0: A, 1: B
+};
+
+/// Which probes of a group need looking at one by one.
+struct Reach {
+  bool faces;  ///< some may lie inside the other body or in one of its surface voxels
+  bool edges;  ///< some may lie within the clearance range (faces implies edges)
+};
+
+/// A rigid transform as a matrix, for the loop over probes.
+struct Placement {
+  glm::dmat3 rotation;
+  glm::dvec3 translation;
+  explicit Placement(const Pose& pose)
+      : rotation(glm::mat3_cast(pose.orientation)), translation(pose.position) {}
+  glm::dvec3 operator()(const glm::dvec3& p) const { return rotation * p + translation; }
+};
+
+/// A sphere around a block of probes some of whose cells survived culling, in the other body's frame.
+struct Sphere {
+  glm::dvec3 centre;
+  double radiusM;
+};
+
+/// One body: its meshes and Embree scene (local frame), its filter, and its probes.
+struct ExactSide {
+  std::vector<const TriangleMesh*> meshes;
+  const Voxmap* voxmap = nullptr;
+  std::unique_ptr<EmbreeScene> scene;
+  Bounds boundsLocal;
+  double rayLengthM = 1.0;  // longer than the bounding box's diagonal
+  /// How far out of this body a probe of the other body counts for the clearance, m.
+  double clearanceRangeM = 0.0;
+  /// Search radius of a clearance query, m.
+  double clearanceCapM = 0.0;
+  double voxelsPerM = 0.0;  // 1 / the voxmap's voxel size, 1/m
+  double estimatedProbes = 0.0;
+  std::unique_ptr<ProbeCells> probes;
+  std::vector<RayCrossing> hits;
+  std::vector<std::uint32_t> parts;
+};
+
+}  // namespace
+
+const char* penetrationDirectionName(PenetrationDirection direction) {
+  switch (direction) {
+    case PenetrationDirection::None:
+      return "none";
+    case PenetrationDirection::AIntoB:
+      return "a-into-b";
+    case PenetrationDirection::BIntoA:
+      return "b-into-a";
+  }
+  return "none";
+}
+
+struct ExactPenetration::Impl {
+  double spacingM;
+  ExactSide sides[2];
+  std::vector<ClearanceCandidate> clearance;
+  std::vector<Sphere> survivors;
+  std::vector<std::uint64_t> keys;
+  std::vector<ProbeBlock> lazyBlocks;
+  bool withClearance = true;
+  std::vector<std::size_t> bucketStarts;
+  std::vector<std::size_t> bucketFill;
+  std::vector<std::uint32_t> ordered;
+
+  bool voteInside(ExactSide& target, const glm::dvec3& pointLocal);
+  Classified classify(const ExactSide& target, const glm::dvec3& pointTarget) const;
+  /// Which probes within `radiusM` of `centreTarget` need looking at one by one.
+  Reach reachOf(const ExactSide& target, const glm::dvec3& centreTarget, double radiusM) const;
+  double depthOf(const ExactSide& target, const glm::dvec3& pointTarget, double hintM) const;
+  /// The least distance of the clearance candidates to their targets' surfaces, m.
+  double leastClearance();
+  /// Probes of `blocks` of side `from` tested against the other side.
+  void probeInto(std::size_t from, std::span<const ProbeBlock> blocks, const Pose& fromToTarget,
+                 const Pose& fromToWorld, PenetrationSample& sample, bool keepSurvivors);
+};
+
+bool ExactPenetration::Impl::voteInside(ExactSide& target, const glm::dvec3& pointLocal) {
   int votes = 0;
   for (const glm::dvec3& direction : kVoteDirections) {
-    hits_.clear();
-    scene_.allCrossings(pointWorld, direction, rayLengthM_, hits_);
-    parts_.clear();
-    for (const RayCrossing& hit : hits_) parts_.push_back(hit.part);
-    std::sort(parts_.begin(), parts_.end());
+    target.hits.clear();
+    target.scene->allCrossings(pointLocal, direction, target.rayLengthM, target.hits);
+    target.parts.clear();
+    for (const RayCrossing& hit : target.hits) target.parts.push_back(hit.part);
+    std::sort(target.parts.begin(), target.parts.end());
     // inside the union when inside any part: some part crossed an odd number of times
     bool odd = false;
-    for (std::size_t i = 0; i < parts_.size() && !odd;) {
+    for (std::size_t i = 0; i < target.parts.size() && !odd;) {
       std::size_t j = i;
-      while (j < parts_.size() && parts_[j] == parts_[i]) ++j;
+      while (j < target.parts.size() && target.parts[j] == target.parts[i]) ++j;
       odd = ((j - i) & 1u) != 0;
       i = j;
     }
@@ -56,37 +156,269 @@ bool ExactPenetration::inside(const glm::dvec3& pointWorld) {
   return votes >= 2;
 }
 
-PenetrationSample ExactPenetration::measure(const Pose& objectToWorld, const Voxmap& staticVoxmap) {
-  PenetrationSample sample;
-  for (const glm::vec3& vertex : verticesLocal_) {
-    const glm::dvec3 p = apply(objectToWorld, glm::dvec3(vertex));
-    const std::uint8_t value = staticVoxmap.value(staticVoxmap.grid().voxelOf(p), Field::Surface);
-    if (value == kValueFar) continue;
-    if (value > kValueFeature) {
-      if (value > kValueFeature + kClearanceVoxels) continue;
-      const double searchM = static_cast<double>(kClearanceVoxels + 2) * staticVoxmap.grid().voxelSizeM;
-      if (const auto nearest = scene_.closestPoint(p, searchM)) {
-        sample.clearanceM = std::min(sample.clearanceM, nearest->distanceM);
-      }
-      continue;
+Classified ExactPenetration::Impl::classify(const ExactSide& target, const glm::dvec3& pointTarget) const {
+  if (!target.voxmap) {
+    const double d = distanceToBox(pointTarget, target.boundsLocal);
+    if (d > target.clearanceRangeM) return {Verdict::Outside, 0.0, 0.0};
+    if (d > 0.0) return {Verdict::Near, d, 0.0};
+    return {Verdict::Unknown, 0.0, target.clearanceRangeM};
+  }
+  const Voxmap& voxmap = *target.voxmap;
+  const double s = voxmap.grid().voxelSizeM;
+  const glm::dvec3 u = glm::floor((pointTarget - voxmap.grid().originLocal) * target.voxelsPerM);
+  const VoxelWord word = voxmap.word(glm::ivec3(u));
+  if (word == Voxmap::kMissingWord) return {Verdict::Unknown, 0.0, 4.0 * s};
+  const std::uint8_t value = voxmap.encoding().value(word, Field::Surface);
+  if (value == kValueFar) return {Verdict::Outside, 0.0, 0.0};
+  if (value == kValueInterior) return {Verdict::Inside, 0.0, 4.0 * s};
+  // the surface passes through the probe's voxel: it is within the voxel's diagonal
+  if (value == kValueFeature) return {Verdict::Unknown, 0.0, std::sqrt(3.0) * s * (1.0 + 1e-6)};
+  const int distanceVoxels = value - kValueFeature;
+  if (distanceVoxels > kClearanceVoxels) return {Verdict::Outside, 0.0, 0.0};
+  // a surface voxel D voxels away (chessboard) is at least D − 1 voxel edges away
+  return {Verdict::Near, static_cast<double>(distanceVoxels - 1) * s, 0.0};
+}
+
+Reach ExactPenetration::Impl::reachOf(const ExactSide& target, const glm::dvec3& centreTarget,
+                                      double radiusM) const {
+  if (!target.voxmap) {
+    const double gapM = distanceToBox(centreTarget, target.boundsLocal) - radiusM;
+    return {gapM <= 0.0, gapM <= target.clearanceRangeM};
+  }
+  const Voxmap& voxmap = *target.voxmap;
+  const double s = voxmap.grid().voxelSizeM;
+  // a point within the radius is at most this many voxels (chessboard) from the centre's
+  const int reachVoxels = static_cast<int>(std::min(std::floor(radiusM / s), 1e6)) + 1;
+  const glm::ivec3 ijk = voxmap.grid().voxelOf(centreTarget);
+  // every chunk within reach holds only far voxels
+  const int reachChunks = reachVoxels / kChunkEdgeVoxels + 1;
+  if (voxmap.chunkDistance(ijk >> kChunkEdgeLog2) > reachChunks) return {false, false};
+  const VoxelWord word = voxmap.word(ijk);
+  if (word == Voxmap::kMissingWord) return {true, true};
+  const std::uint8_t value = voxmap.encoding().value(word, Field::Surface);
+  int distanceVoxels = 0;
+  if (value == kValueFar) {
+    distanceVoxels = voxmap.encoding().rangeVoxels + 1;
+  } else if (value > kValueFeature) {
+    distanceVoxels = value - kValueFeature;
+  } else {
+    return {true, true};
+  }
+  // every voxel within reach is free space at least this far (chessboard) from the surface
+  const int freeVoxels = distanceVoxels - reachVoxels;
+  return {freeVoxels < 1, freeVoxels <= kClearanceVoxels};
+}
+
+double ExactPenetration::Impl::depthOf(const ExactSide& target, const glm::dvec3& pointTarget,
+                                       double hintM) const {
+  // most contacts are shallow: a small search radius first, the whole body if need be
+  auto nearest = target.scene->closestPoint(pointTarget, hintM);
+  if (!nearest) nearest = target.scene->closestPoint(pointTarget, target.rayLengthM);
+  return nearest ? nearest->distanceM : 0.0;
+}
+
+void ExactPenetration::Impl::probeInto(std::size_t from, std::span<const ProbeBlock> blocks,
+                                       const Pose& fromToTarget, const Pose& fromToWorld,
+                                       PenetrationSample& sample, bool keepSurvivors) {
+  ExactSide& source = sides[from];
+  ExactSide& target = sides[1 - from];
+  const ProbeCells& probes = *source.probes;
+  const auto direction = from == 0 ? PenetrationDirection::AIntoB : PenetrationDirection::BIntoA;
+  const Placement toTarget(fromToTarget);
+  for (const ProbeBlock& block : blocks) {
+    std::uint64_t blockProbes = 0;
+    for (std::uint32_t c = block.firstCell; c < block.firstCell + block.cellCount; ++c) {
+      blockProbes += probes.cell(c).count;
     }
-    ++sample.candidates;
-    if (!inside(p)) {
-      if (const auto nearest = scene_.closestPoint(p, 2.0 * staticVoxmap.grid().voxelSizeM)) {
-        sample.clearanceM = std::min(sample.clearanceM, nearest->distanceM);
+    sample.probes += blockProbes;
+    const glm::dvec3 blockCentreTarget = toTarget(block.centreLocal);
+    if (!reachOf(target, blockCentreTarget, block.radiusM).edges) continue;
+    bool anyCell = false;
+    for (std::uint32_t c = block.firstCell; c < block.firstCell + block.cellCount; ++c) {
+      const ProbeCell& cell = probes.cell(c);
+      const glm::dvec3 centreTarget = toTarget(cell.centreLocal);
+      const Reach reach = reachOf(target, centreTarget, cell.radiusM);
+      if (!reach.edges) continue;
+      anyCell = true;
+      // edge probes count for the clearance; without it, or inside, they are like the others
+      const bool edges = withClearance ? reach.edges : reach.faces;
+      const std::uint32_t end = cell.first + (reach.faces ? cell.count : (edges ? cell.edgeCount : 0));
+      sample.nearProbes += end - cell.first;
+      for (std::uint32_t i = cell.first; i < end; ++i) {
+        const bool onEdge = i < cell.first + cell.edgeCount;
+        const glm::dvec3 pointLocal(probes.probeLocal(i));
+        const glm::dvec3 pointTarget = toTarget(pointLocal);
+        const Classified k = classify(target, pointTarget);
+        bool isInside = false;
+        switch (k.verdict) {
+          case Verdict::Outside:
+            continue;
+          case Verdict::Near:
+            if (onEdge && withClearance)
+              clearance.push_back({k.lowerBoundM, pointTarget, static_cast<std::uint8_t>(1 - from)});
+            continue;
+          case Verdict::Inside:
+            isInside = true;
+            break;
+          case Verdict::Unknown:
+            ++sample.candidates;
+            isInside = voteInside(target, pointTarget);
+            if (!isInside && onEdge && withClearance)
+              clearance.push_back({0.0, pointTarget, static_cast<std::uint8_t>(1 - from)});
+            break;
+        }
+        if (!isInside) continue;
+        ++sample.inside;
+        const double depthM = depthOf(target, pointTarget, k.depthHintM);
+        if (depthM > sample.depthM) {
+          sample.depthM = depthM;
+          sample.deepestWorld = apply(fromToWorld, pointLocal);
+          sample.direction = direction;
+        }
       }
-      continue;
     }
-    ++sample.inside;
-    // most contacts are shallow: a small search radius first, the whole scene if need be
-    auto nearest = scene_.closestPoint(p, 4.0 * staticVoxmap.grid().voxelSizeM);
-    if (!nearest) nearest = scene_.closestPoint(p, rayLengthM_);
-    if (nearest && nearest->distanceM > sample.depthM) {
-      sample.depthM = nearest->distanceM;
-      sample.deepestWorld = p;
+    if (keepSurvivors && anyCell) survivors.push_back({blockCentreTarget, block.radiusM});
+  }
+}
+
+ExactPenetration::ExactPenetration(const ExactBody& a, const ExactBody& b, double probeSpacingM,
+                                   double maxWholeProbes)
+    : impl_(std::make_unique<Impl>()) {
+  if (!(probeSpacingM > 0.0) || !std::isfinite(probeSpacingM)) {
+    throw Error("exact penetration: the probe spacing must be a positive length, got " +
+                std::to_string(probeSpacingM) + " m");
+  }
+  impl_->spacingM = probeSpacingM;
+  const ExactBody* bodies[2] = {&a, &b};
+  for (std::size_t i = 0; i < 2; ++i) {
+    ExactSide& side = impl_->sides[i];
+    side.meshes = bodies[i]->meshesLocal;
+    side.voxmap = bodies[i]->voxmapLocal;
+    side.scene = std::make_unique<EmbreeScene>(side.meshes);
+    for (const TriangleMesh* mesh : side.meshes) {
+      for (const glm::vec3& p : mesh->positionsWorld) side.boundsLocal.add(glm::dvec3(p));
+      for (const glm::uvec3& t : mesh->triangles) {
+        side.estimatedProbes += estimateTriangleProbes(mesh->positionsWorld[t.x], mesh->positionsWorld[t.y],
+                                                       mesh->positionsWorld[t.z], probeSpacingM);
+      }
+    }
+    side.rayLengthM = 2.0 * glm::length(side.boundsLocal.extent()) + 1.0;
+    if (side.voxmap) {
+      const double s = side.voxmap->grid().voxelSizeM;
+      // a probe in a voxel at most kClearanceVoxels from a surface voxel is at most this far
+      side.clearanceRangeM = std::sqrt(3.0) * (kClearanceVoxels + 1) * s;
+      side.clearanceCapM = (kClearanceVoxels + 2) * s;
+      side.voxelsPerM = 1.0 / s;
+    } else {
+      side.clearanceRangeM = kClearanceVoxels * kProbesPerVoxel * probeSpacingM;
+      side.clearanceCapM = side.clearanceRangeM;
     }
   }
+  for (std::size_t i = 0; i < 2; ++i) {
+    ExactSide& side = impl_->sides[i];
+    const ExactSide& other = impl_->sides[1 - i];
+    // the smaller surface is always probed whole; the larger when it is small enough
+    const bool whole = side.estimatedProbes <= maxWholeProbes ||
+                       side.estimatedProbes < other.estimatedProbes ||
+                       (side.estimatedProbes == other.estimatedProbes && i == 0);
+    // cells about two voxels of the other body's voxmap across, so that culling a cell
+    // by the voxel under its centre works
+    double cellM = kCellSpacings * probeSpacingM;
+    if (other.voxmap) cellM = std::clamp(2.0 * other.voxmap->grid().voxelSizeM, 2.0 * probeSpacingM, cellM);
+    side.probes = std::make_unique<ProbeCells>(side.meshes, *side.scene, probeSpacingM, cellM, whole);
+  }
+}
+
+ExactPenetration::~ExactPenetration() = default;
+
+PenetrationSample ExactPenetration::measure(const Pose& aToWorld, const Pose& bToWorld, bool withClearance) {
+  Impl& m = *impl_;
+  m.withClearance = withClearance;
+  PenetrationSample sample;
+  m.clearance.clear();
+  m.survivors.clear();
+  const Pose toWorld[2] = {aToWorld, bToWorld};
+  const Pose aToB = compose(inverse(bToWorld), aToWorld);
+  const Pose bToA = compose(inverse(aToWorld), bToWorld);
+  const Pose toOther[2] = {aToB, bToA};
+
+  // the sides probed whole first; an on-demand side then probes the regions near the
+  // cells of the other that were not culled
+  const std::size_t first = m.sides[0].probes->whole() ? 0 : 1;
+  const std::size_t second = 1 - first;
+  m.probeInto(first, m.sides[first].probes->blocks(), toOther[first], toWorld[first], sample,
+              !m.sides[second].probes->whole());
+  ExactSide& next = m.sides[second];
+  if (next.probes->whole()) {
+    m.probeInto(second, next.probes->blocks(), toOther[second], toWorld[second], sample, false);
+  } else {
+    if (next.probes->probeCount() > kMaxCachedProbes) next.probes->clear();
+    // probes of `next` within the clearance range of the other side's surface, or inside it
+    const double marginM = m.sides[first].clearanceRangeM + m.spacingM;
+    m.keys.clear();
+    for (const Sphere& s : m.survivors) {
+      const glm::dvec3 reach(s.radiusM + marginM);
+      next.probes->blockKeysIn(s.centre - reach, s.centre + reach, m.keys);
+    }
+    std::sort(m.keys.begin(), m.keys.end());
+    m.keys.erase(std::unique(m.keys.begin(), m.keys.end()), m.keys.end());
+    m.lazyBlocks.clear();
+    for (const std::uint64_t key : m.keys) {
+      if (const std::optional<ProbeBlock> block = next.probes->block(key)) m.lazyBlocks.push_back(*block);
+    }
+    m.probeInto(second, m.lazyBlocks, toOther[second], toWorld[second], sample, false);
+  }
+
+  sample.clearanceM = m.leastClearance();
   return sample;
+}
+
+double ExactPenetration::Impl::leastClearance() {
+  // nearest candidates first (by buckets of their lower bounds, in the order they came
+  // within a bucket), each query no wider than the best so far
+  double widthM = std::numeric_limits<double>::infinity();
+  for (const ExactSide& side : sides) widthM = std::min(widthM, side.clearanceRangeM / kClearanceBuckets);
+  bucketStarts.assign(kClearanceBuckets + 1, 0);
+  auto bucketOf = [&](double lowerBoundM) {
+    return std::min(static_cast<std::size_t>(lowerBoundM / widthM), kClearanceBuckets - 1);
+  };
+  for (const ClearanceCandidate& c : clearance) ++bucketStarts[bucketOf(c.lowerBoundM) + 1];
+  for (std::size_t b = 1; b <= kClearanceBuckets; ++b) bucketStarts[b] += bucketStarts[b - 1];
+  ordered.resize(clearance.size());
+  bucketFill.assign(bucketStarts.begin(), bucketStarts.end() - 1);
+  for (std::uint32_t i = 0; i < clearance.size(); ++i)
+    ordered[bucketFill[bucketOf(clearance[i].lowerBoundM)]++] = i;
+
+  double bestM = std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < kClearanceBuckets; ++b) {
+    if (static_cast<double>(b) * widthM >= bestM) break;
+    for (std::size_t k = bucketStarts[b]; k < bucketStarts[b + 1]; ++k) {
+      const ClearanceCandidate& c = clearance[ordered[k]];
+      if (c.lowerBoundM >= bestM) continue;
+      const ExactSide& target = sides[c.target];
+      if (const auto nearest =
+              target.scene->closestPoint(c.pointTarget, std::min(bestM, target.clearanceCapM))) {
+        bestM = std::min(bestM, nearest->distanceM);
+      }
+    }
+  }
+  return bestM;
+}
+
+bool ExactPenetration::inside(std::size_t body, const glm::dvec3& pointLocal) {
+  return impl_->voteInside(impl_->sides[body], pointLocal);
+}
+
+bool ExactPenetration::probedWhole(std::size_t body) const {
+  return impl_->sides[body].probes->whole();
+}
+
+std::size_t ExactPenetration::probeCount(std::size_t body) const {
+  return impl_->sides[body].probes->probeCount();
+}
+
+double ExactPenetration::probeSpacingM() const {
+  return impl_->spacingM;
 }
 
 }  // namespace voxhap

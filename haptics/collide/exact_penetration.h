@@ -1,76 +1,146 @@
 #pragma once
-/// Ground-truth penetration of a moving object into static geometry, for demos,
-/// benchmarks and tests (never the 1 kHz frame): how deep the moving object's mesh
-/// vertices sit inside the static triangle meshes, measured exactly with Embree.
+/// Ground-truth penetration between two rigid bodies, for demos, benchmarks and tests
+/// (never the 1 kHz frame): how deep either body's surface sits inside the other,
+/// measured exactly with Embree on the triangle meshes, faces included.
 ///
-/// A vertex is inside when a ray from it crosses some static part an odd number of
-/// times (parity per part, so overlapping parts are fine); three skewed rays vote, two
-/// or more decide, so that a ray grazing an edge cannot flip the answer. Its depth is its
-/// distance to the nearest static surface point.
+/// Bodies. Each body is a set of closed triangle meshes in its own local frame, placed
+/// by a pose at each measurement; a static body is one whose local frame is the world
+/// (identity pose). A moving object's meshes as the scene loads them are its local-frame
+/// meshes (its local frame is the world frame at load time, DESIGN §3).
 ///
-/// Casting rays for every vertex every frame would cost far more than the frame itself,
-/// so the static voxmap filters first: a vertex whose static voxel is free space (value
-/// ≥ 3, or far) lies in a voxel no surface passes through and that the voxelizer found
-/// outside, so it is outside; only vertices in surface or interior voxels are tested
-/// exactly. The filter is exact as long as the voxelizer's inside/outside votes were
-/// (it warns otherwise). Vertices a few voxels out get their exact clearance instead, so
-/// that a run without penetration still says how close it came. Load time: the Embree scene (allocates, may
-/// throw voxhap::Error); measure(): one thread at a time, reuses its buffers.
+/// Probes. Each body's surface is sampled by probes (surface_probes.h): every triangle's
+/// vertices, edges and interior at `probeSpacingM` (kProbesPerVoxel per voxel of the
+/// static scene by default), so that an edge cutting a face between vertices, or the
+/// other body's corner poking into a face, is seen. A probe of one body is tested against
+/// the other body in that body's frame (both directions): inside when a ray from it
+/// crosses some part of the other body an odd number of times (parity per part, so that
+/// overlapping parts are fine; three skewed rays vote, two decide); its depth is then its
+/// exact distance to the other body's surface (closest point). The measure's depth is the
+/// deepest probe's, in either direction.
+///
+/// Which probes. Probing a small body (a moving object) is done once, at construction,
+/// in its local frame. A large body (a static scene of millions of triangles) is probed
+/// on demand, region by region (blocks of probe cells, probe_cells.h), only where the
+/// small body's surface comes near it, and the regions are cached across measurements;
+/// the answer does not depend on what is cached. Probes are grouped in cells and blocks
+/// with bounding spheres, and whole groups far from the other body are skipped at once.
+///
+/// Filter. A body may come with a voxmap (its local frame, voxelized from the same meshes,
+/// e.g. the static environment's or a moving object's voxmap): a probe of the other body
+/// in one of its free-space voxels (value ≥ 3, or far) lies where no surface passes and
+/// the voxelizer found outside, so it is outside without rays; one in an interior voxel
+/// (value 1) is inside for the same reason and only its depth is measured; only probes in
+/// surface voxels (value 2, or a voxel of a paged voxmap that is not resident) take the
+/// ray vote. The filter is exact as long as the voxelizer's inside/outside votes were (it
+/// warns otherwise). Without a voxmap, the body's bounding box filters instead and every
+/// probe inside the box takes the vote: fine for small meshes, slow for large ones.
+///
+/// Clearance. Probes outside the other body but within a few voxels of it (kClearanceVoxels,
+/// or kClearanceVoxels · kProbesPerVoxel · probeSpacingM without a voxmap) give the least
+/// exact distance between the surfaces, so that a run without penetration still says how
+/// close it came. The least distance between two polyhedral surfaces is reached at a
+/// vertex facing a face or between two edges, so only vertex and edge probes (of both
+/// bodies) are measured for it: exact for a vertex facing a face, within half the probe
+/// spacing between edges.
+///
+/// Threads: construction builds Embree scenes and probes (allocates, may throw
+/// voxhap::Error); measure() and inside() are for one thread at a time (they reuse
+/// buffers and the cache of probes).
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <span>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "haptics/dynamics/pose.h"
-#include "haptics/geometry/embree_scene.h"
 #include "haptics/scene/scene.h"
 #include "haptics/voxel/voxmap.h"
 
 namespace voxhap {
 
+/// One body of an exact measurement. Everything is kept by reference: the meshes and the
+/// voxmap must outlive the ExactPenetration built from them.
+struct ExactBody {
+  /// Closed triangle meshes, the body's local frame (a static body: world), m.
+  std::vector<const TriangleMesh*> meshesLocal;
+  /// Optional filter: the body's voxmap, its local frame, voxelized from `meshesLocal`;
+  /// may be paged. nullptr: the bounding box filters (see the design note).
+  const Voxmap* voxmapLocal = nullptr;
+};
+
+/// Which surface was found inside which body.
+enum class PenetrationDirection : std::uint8_t {
+  None,    ///< nothing inside
+  AIntoB,  ///< a probe on body A's surface inside body B
+  BIntoA,  ///< a probe on body B's surface inside body A
+};
+
+/// "none", "a-into-b" or "b-into-a", for reports.
+const char* penetrationDirectionName(PenetrationDirection direction);
+
 /// What one measurement found.
 struct PenetrationSample {
-  double depthM = 0.0;           ///< deepest vertex below the static surface, m (0: none inside)
-  glm::dvec3 deepestWorld{0.0};  ///< that vertex, world frame, m (meaningful when depthM > 0)
-  std::uint32_t candidates = 0;  ///< vertices in static surface or interior voxels, tested exactly
-  std::uint32_t inside = 0;      ///< of which inside a static part
-  /// Least exact distance from a vertex outside to the static surface, m, among the
-  /// vertices in static voxels at most kClearanceVoxels from a surface voxel (infinite
-  /// when there are none: every vertex is further than about that many voxels away).
+  /// Deepest probe inside the other body: its exact distance to that body's surface, m
+  /// (0: no probe inside).
+  double depthM = 0.0;
+  /// That probe (on the penetrating surface), world frame, m (meaningful when depthM > 0).
+  glm::dvec3 deepestWorld{0.0};
+  PenetrationDirection direction = PenetrationDirection::None;  ///< whose probe it is
+  std::uint64_t probes = 0;      ///< probes of both surfaces the measurement considered
+  std::uint64_t nearProbes = 0;  ///< of which near enough to the other body to be looked at one by one
+  std::uint64_t candidates = 0;  ///< of which took the exact inside test (ray vote)
+  std::uint64_t inside = 0;      ///< probes found inside the other body (by the vote or an interior voxel)
+  /// Least exact distance from a vertex or edge probe outside the other body to that
+  /// body's surface, m, among the probes within the clearance range (infinite when there
+  /// are none: the surfaces are further apart than about kClearanceVoxels voxels).
   double clearanceM = std::numeric_limits<double>::infinity();
 };
 
-/// Vertices whose static voxel is at most this many voxels (chessboard) from a surface
+/// Probes within this many voxels (chessboard, in the other body's voxmap) of a surface
 /// voxel get their clearance measured exactly.
 inline constexpr int kClearanceVoxels = 4;
+/// The default probe spacing is the static voxel size over this: probes a quarter voxel apart.
+inline constexpr int kProbesPerVoxel = 4;
+/// A body whose surface takes at most this many probes is probed whole at construction
+/// (the smaller body of a pair always is); a larger one on demand.
+inline constexpr double kMaxWholeProbes = 4.0e6;
+/// Probes of an on-demand body kept cached across measurements; beyond, the cache starts over.
+inline constexpr std::size_t kMaxCachedProbes = std::size_t{1} << 23;
 
 class ExactPenetration {
 public:
-  /// `staticMeshes` (world frame, closed; kept by reference, must outlive this) and the
-  /// moving object's vertices in its local frame (copied; exact duplicates dropped).
-  ExactPenetration(std::span<const TriangleMesh* const> staticMeshes,
-                   std::span<const glm::vec3> verticesLocal);
+  /// Bodies `a` and `b` (see ExactBody), probed at `probeSpacingM` (> 0, m; e.g. the
+  /// static voxel size / kProbesPerVoxel). The larger surface is probed on demand when it
+  /// would take more than `maxWholeProbes` probes (tests lower it). Throws voxhap::Error
+  /// for a bad spacing or when Embree fails.
+  ExactPenetration(const ExactBody& a, const ExactBody& b, double probeSpacingM,
+                   double maxWholeProbes = kMaxWholeProbes);
+  ~ExactPenetration();
+  ExactPenetration(const ExactPenetration&) = delete;
+  ExactPenetration& operator=(const ExactPenetration&) = delete;
 
-  /// The vertices placed by `objectToWorld`, filtered by `staticVoxmap` (world frame,
-  /// voxelized from the same meshes) and measured exactly.
-  PenetrationSample measure(const Pose& objectToWorld, const Voxmap& staticVoxmap);
+  /// The penetration of A placed by `aToWorld` and B placed by `bToWorld` (local → world),
+  /// both directions. Without `withClearance` the clearance is not measured (clearanceM
+  /// stays infinite): near a wide parallel gap that is most of the cost.
+  PenetrationSample measure(const Pose& aToWorld, const Pose& bToWorld, bool withClearance = true);
 
-  /// Whether `pointWorld` lies inside a static part (three-ray parity vote).
-  bool inside(const glm::dvec3& pointWorld);
+  /// Whether `pointLocal` (body `body`'s local frame, m; 0: A, 1: B) lies inside that
+  /// body, by the three-ray parity vote straight from its meshes.
+  bool inside(std::size_t body, const glm::dvec3& pointLocal);
 
-  /// Distinct vertices measured.
-  std::size_t vertexCount() const { return verticesLocal_.size(); }
+  /// Whether body `body` (0: A, 1: B) was probed whole at construction.
+  bool probedWhole(std::size_t body) const;
+  /// Probes body `body` holds now: all of its surface's when probed whole, the cached
+  /// regions' otherwise.
+  std::size_t probeCount(std::size_t body) const;
+  double probeSpacingM() const;
 
 private:
-  std::vector<TriangleMesh const*> meshes_;
-  EmbreeScene scene_;
-  std::vector<glm::vec3> verticesLocal_;
-  double rayLengthM_ = 0.0;  // longer than the static meshes' bounding box diagonal
-  std::vector<RayCrossing> hits_;
-  std::vector<std::uint32_t> parts_;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace voxhap

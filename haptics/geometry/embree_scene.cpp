@@ -57,6 +57,24 @@ bool visitTriangle(RTCPointQueryFunctionArguments* args) {
   return true;
 }
 
+struct NearQuery {
+  const std::vector<const TriangleMesh*>* meshes;
+  std::vector<TriangleRef>* out;
+  glm::dvec3 point;
+  double radiusM;
+};
+
+bool collectTriangle(RTCPointQueryFunctionArguments* args) {
+  auto* q = static_cast<NearQuery*>(args->userPtr);
+  const TriangleMesh& mesh = *(*q->meshes)[args->geomID];
+  const glm::uvec3& t = mesh.triangles[args->primID];
+  const glm::dvec3 p = closestPointOnTriangle(q->point, glm::dvec3(mesh.positionsWorld[t.x]),
+                                              glm::dvec3(mesh.positionsWorld[t.y]),
+                                              glm::dvec3(mesh.positionsWorld[t.z]));
+  if (glm::length(p - q->point) <= q->radiusM) q->out->push_back({args->geomID, args->primID});
+  return false;  // the radius stays: every triangle within it is wanted
+}
+
 }  // namespace
 
 glm::dvec3 closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
@@ -170,6 +188,24 @@ std::optional<ClosestSurfacePoint> EmbreeScene::closestPoint(const glm::dvec3& p
   ClosestQuery q{&meshes_, std::nullopt, point};
   rtcPointQuery(asScene(scene_), &query, &context, &visitTriangle, &q);
   return q.best;
+}
+
+void EmbreeScene::trianglesWithin(const glm::dvec3& point, double radiusM, std::vector<TriangleRef>& out) const {
+  RTCPointQuery query{};
+  query.x = static_cast<float>(point.x);
+  query.y = static_cast<float>(point.y);
+  query.z = static_cast<float>(point.z);
+  query.time = 0.0f;
+  // a little wider in float, so that rounding the centre loses no triangle; the exact
+  // test in collectTriangle decides
+  query.radius = static_cast<float>(radiusM) * (1.0f + 1e-5f) + 1e-6f;
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  const std::size_t first = out.size();
+  NearQuery q{&meshes_, &out, point, radiusM};
+  rtcPointQuery(asScene(scene_), &query, &context, &collectTriangle, &q);
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+  out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(first), out.end()), out.end());
 }
 
 }  // namespace voxhap

@@ -22,6 +22,14 @@ struct RayCrossing {
   std::uint32_t triangle;  ///< index of the triangle in that mesh
 };
 
+/// One triangle of the scene.
+struct TriangleRef {
+  std::uint32_t part;      ///< index of the mesh in the scene's part list
+  std::uint32_t triangle;  ///< index of the triangle in that mesh
+  friend bool operator==(const TriangleRef&, const TriangleRef&) = default;
+  friend auto operator<=>(const TriangleRef&, const TriangleRef&) = default;
+};
+
 /// The surface point nearest to a query point.
 struct ClosestSurfacePoint {
   glm::dvec3 point;        ///< on the triangle, same frame as the meshes, m
@@ -47,6 +55,10 @@ public:
 
   /// The closest surface point within `maxDistanceM` of `point`, if any.
   std::optional<ClosestSurfacePoint> closestPoint(const glm::dvec3& point, double maxDistanceM) const;
+
+  /// Appends to `out` every triangle with a point within `radiusM` of `point` (same frame
+  /// as the meshes, m), each once, sorted by (part, triangle).
+  void trianglesWithin(const glm::dvec3& point, double radiusM, std::vector<TriangleRef>& out) const;
 
 private:
   void release();

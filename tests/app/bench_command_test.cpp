@@ -251,8 +251,8 @@ namespace {
 constexpr const char* kExtractionKeys[] = {
     "voxel_size_m",       "point_spacing_m",  "points",         "frames",         "completion_s",
     "wall_s",             "frames_over_budget", "missed_deadlines", "compute_p50_us", "compute_p99_us",
-    "compute_max_us",     "max_contacts",     "max_penetration_m", "mean_travel_scale", "actuator_progress_m",
-    "path_length_m"};
+    "compute_max_us",     "max_contacts",     "max_penetration_m", "exact_wall_s", "mean_travel_scale",
+    "actuator_progress_m", "path_length_m"};
 
 // The landing gear takes minutes to generate and voxelize in a fresh cache: the quick row
 // runs on the committed peg-in-hole scene instead (the peg lifted out of its hole), which
@@ -284,6 +284,8 @@ TEST_F(BenchCommand, ExtractionQuickPrintsOneRowWithEveryKey) {
   }
   EXPECT_LE(row.at("compute_p50_us").get<double>(), row.at("compute_max_us").get<double>());
   EXPECT_GE(row.at("max_penetration_m").get<double>(), 0.0);
+  EXPECT_GT(row.at("exact_wall_s").get<double>(), 0.0);
+  EXPECT_LT(row.at("exact_wall_s").get<double>(), row.at("wall_s").get<double>());
 }
 
 }  // namespace

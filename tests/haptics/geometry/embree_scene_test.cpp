@@ -1,5 +1,6 @@
 #include "haptics/geometry/embree_scene.h"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "haptics/geometry/mesh_builder.h"
@@ -40,6 +41,34 @@ TEST(EmbreeScene, ClosestPointGivesExactDistanceAndOutwardNormal) {
   ASSERT_TRUE(corner);
   EXPECT_NEAR(corner->distanceM, std::sqrt(3.0), 1e-6);
   EXPECT_FALSE(scene.closestPoint({3.0, 0.0, 0.0}, 1.0));  // beyond the search radius
+}
+
+TEST(EmbreeScene, TrianglesWithinARadiusAreEveryTriangleThatComesThatClose) {
+  const TriangleMesh cube = unitCube();
+  const TriangleMesh other = [] {
+    TriangleMesh m;
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(3.0, 0.0, 0.0)), glm::dvec3(0.5));
+    return m;
+  }();
+  const TriangleMesh* meshes[] = {&cube, &other};
+  const EmbreeScene scene(meshes);
+  // 0.6 from the +x face's centre: its two triangles only (the others are further)
+  std::vector<TriangleRef> near;
+  scene.trianglesWithin({1.1, 0.0, 0.0}, 0.65, near);
+  ASSERT_EQ(near.size(), 2u);
+  for (const TriangleRef& t : near) {
+    EXPECT_EQ(t.part, 0u);
+    const glm::uvec3& v = cube.triangles[t.triangle];
+    for (const unsigned i : {v.x, v.y, v.z}) EXPECT_EQ(cube.positionsWorld[i].x, 0.5f);
+  }
+  EXPECT_LT(near[0], near[1]);  // sorted, each once
+  // a radius reaching both boxes: every triangle of the +x face of one and the −x of the other
+  near.clear();
+  scene.trianglesWithin({1.5, 0.0, 0.0}, 1.05, near);
+  EXPECT_EQ(near.size(), 4u);
+  // appended after what is there, nothing when out of reach
+  scene.trianglesWithin({10.0, 0.0, 0.0}, 1.0, near);
+  EXPECT_EQ(near.size(), 4u);
 }
 
 TEST(EmbreeScene, ClosestPointOnTriangleRegions) {
