@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
+#include "app/cli/number_format.h"
 #include "haptics/core/error.h"
 
 namespace voxhap::cli {
@@ -40,6 +42,54 @@ void ExactCheckSummary::add(const std::vector<ExactPairSample>& pairs,
     }
   }
   framesWithPenetration += anyInside ? 1 : 0;
+}
+
+nlohmann::ordered_json exactCheckJson(const ExactCheckSummary& summary, std::uint64_t everyFrames,
+                                      double probeSpacingM, double voxelSizeM) {
+  const bool penetrated = summary.maxDepthM > 0.0;
+  auto orNull = [penetrated](nlohmann::ordered_json value) {
+    return penetrated ? value : nlohmann::ordered_json();
+  };
+  const glm::dvec3& w = summary.maxDepthWorld;
+  return {
+      {"every_frames", everyFrames},
+      {"checks", summary.checks},
+      {"probe_spacing_m", probeSpacingM},
+      {"max_depth_m", summary.maxDepthM},
+      {"max_depth_voxels", summary.maxDepthM / voxelSizeM},
+      {"max_depth_frame", orNull(summary.maxDepthFrame)},
+      {"max_depth_at_s", orNull(summary.maxDepthAtS)},
+      {"max_depth_into", orNull(summary.maxDepthInto)},
+      {"max_depth_world_m", orNull({w.x, w.y, w.z})},
+      {"frames_with_penetration", summary.framesWithPenetration},
+      {"min_clearance_m", std::isinf(summary.minClearanceM) ? nlohmann::ordered_json()
+                                                            : nlohmann::ordered_json(summary.minClearanceM)},
+      {"min_clearance_at_s", summary.minClearanceAtS},
+      {"probes", summary.probes},
+      {"near_probes", summary.nearProbes},
+      {"exact_tests", summary.candidates},
+      {"wall_s", summary.wallS}};
+}
+
+void printExactChecks(std::ostream& out, const ExactCheckSummary& summary, std::uint64_t everyFrames,
+                      double probeSpacingM, double voxelSizeM) {
+  out << "exact depth     " << fixed(summary.maxDepthM * 1e3, 3) << " mm ("
+      << fixed(summary.maxDepthM / voxelSizeM, 2) << " voxels of " << fixed(voxelSizeM * 1e3, 3) << " mm)";
+  if (summary.maxDepthM > 0.0) {
+    out << " after frame " << summary.maxDepthFrame << " (t = " << fixed(summary.maxDepthAtS, 3) << " s), "
+        << summary.maxDepthInto;
+  }
+  out << "; " << summary.framesWithPenetration << " of " << summary.checks << " checks had a probe inside\n"
+      << "exact clearance "
+      << (std::isinf(summary.minClearanceM)
+              ? std::string("more than ") + std::to_string(kClearanceVoxels) + " voxels"
+              : fixed(summary.minClearanceM * 1e3, 3) + " mm at t = " + fixed(summary.minClearanceAtS, 3) +
+                    " s")
+      << "\nexact checks    " << summary.checks << " ("
+      << (everyFrames == 1 ? std::string("every frame from 0")
+                           : "frames 0, " + std::to_string(everyFrames) + ", " +
+                                 std::to_string(2 * everyFrames) + ", … and the last")
+      << "), probes " << fixed(probeSpacingM * 1e3, 3) << " mm apart, " << fixed(summary.wallS, 2) << " s\n";
 }
 
 ExactChecks::ExactChecks(const Scene& scene, const SimModel& model, const SceneModelOptions& options,
@@ -116,12 +166,12 @@ const std::vector<ExactPairSample>& ExactChecks::measure(const SimModel& model, 
   return samples_;
 }
 
-void ExactChecks::check(const SimModel& model, const SimState& state, std::uint64_t frame,
-                        ExactCheckSummary& summary, bool withClearance) {
+void ExactChecks::check(const SimModel& model, const SimState& state, ExactCheckSummary& summary,
+                        bool withClearance) {
   const auto start = std::chrono::steady_clock::now();
   measure(model, state, withClearance);
   const double wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  summary.add(samples_, names_, frame, state.timeS, wallS, withClearance);
+  summary.add(samples_, names_, state.frame, state.timeS, wallS, withClearance);
 }
 
 std::size_t ExactChecks::movingProbes(std::size_t object) const {

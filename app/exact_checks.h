@@ -12,8 +12,11 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "haptics/collide/exact_penetration.h"
 #include "haptics/core/progress.h"
@@ -38,7 +41,7 @@ struct ExactCheckSummary {
   std::uint64_t framesWithPenetration = 0;  ///< of which with some probe inside
   double maxDepthM = 0.0;                   ///< deepest probe over the run, m
   double maxDepthAtS = 0.0;                 ///< when, simulated s
-  std::uint64_t maxDepthFrame = 0;          ///< in which frame (from 0)
+  std::uint64_t maxDepthFrame = 0;          ///< after which frame (SimState::frame, as the trace counts)
   glm::dvec3 maxDepthWorld{0.0};            ///< where, world, m
   std::string maxDepthInto;                 ///< whose surface into what: "actuator into static"
   double minClearanceM = std::numeric_limits<double>::infinity();  ///< least clearance, m
@@ -54,6 +57,18 @@ struct ExactCheckSummary {
            double wallSpentS, bool withClearance);
 };
 
+/// `summary` as the `exact_penetration` object of `voxhap simulate --json`: every_frames,
+/// checks, probe_spacing_m, max_depth_m, max_depth_voxels (in voxels of `voxelSizeM`),
+/// max_depth_frame, max_depth_at_s, max_depth_into, max_depth_world_m (the last four null
+/// without penetration), frames_with_penetration, min_clearance_m (null: beyond range),
+/// min_clearance_at_s, probes, near_probes, exact_tests, wall_s.
+nlohmann::ordered_json exactCheckJson(const ExactCheckSummary& summary, std::uint64_t everyFrames,
+                                      double probeSpacingM, double voxelSizeM);
+
+/// The same as aligned text lines.
+void printExactChecks(std::ostream& out, const ExactCheckSummary& summary, std::uint64_t everyFrames,
+                      double probeSpacingM, double voxelSizeM);
+
 class ExactChecks {
 public:
   /// The checks of `model`, built from `scene` with `options` (whose voxelizer gives the
@@ -66,9 +81,9 @@ public:
   /// Measures every pair at the poses of `state`, the clearance too when `withClearance`.
   const std::vector<ExactPairSample>& measure(const SimModel& model, const SimState& state,
                                               bool withClearance = true);
-  /// Measures every pair at the poses of `state`, frame `frame`, and adds it to `summary`
-  /// with the wall time it took.
-  void check(const SimModel& model, const SimState& state, std::uint64_t frame, ExactCheckSummary& summary,
+  /// Measures every pair at the poses of `state` and adds it to `summary` with the wall
+  /// time it took.
+  void check(const SimModel& model, const SimState& state, ExactCheckSummary& summary,
              bool withClearance = true);
 
   /// Per pair, the names of body A and body B ("static" for the static scene).

@@ -104,7 +104,7 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
               const bool last = f + 1 == frames;
               const Pose pose = objectPose(model, state, 0);
               if (f % every == 0 || last) {
-                truth.check(model, state, f, r.exact, r.exact.checks % kClearanceEveryChecks == 0 || last);
+                truth.check(model, state, r.exact, r.exact.checks % kClearanceEveryChecks == 0 || last);
               }
               if (f % kClearCheckEveryFrames == 0 || last) {
                 const bool nowClear = clearOfEverything(model.objects[0].shell, pose, staticVoxmap);

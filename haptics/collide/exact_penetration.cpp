@@ -11,6 +11,8 @@
 #include "haptics/collide/surface_probes.h"
 #include "haptics/core/error.h"
 #include "haptics/geometry/embree_scene.h"
+#include "haptics/geometry/mesh_topology.h"
+#include "haptics/geometry/pseudo_normals.h"
 #include "haptics/voxel/voxel_encoding.h"
 
 namespace voxhap {
@@ -26,6 +28,10 @@ const glm::dvec3 kVoteDirections[] = {
 
 /// Clearance candidates are taken nearest first, in this many buckets of lower bound.
 constexpr std::size_t kClearanceBuckets = 64;
+
+/// A closest point this near a mesh edge or vertex takes that feature's pseudo-normal, m:
+/// far above the rounding of a closest point computed on the feature, far below any probe spacing.
+constexpr double kFeatureToleranceM = 1e-9;
 
 /// Probe cells span at most this many probe spacings along an edge.
 constexpr double kCellSpacings = 8.0;
@@ -92,6 +98,11 @@ struct ExactSide {
   double clearanceCapM = 0.0;
   double voxelsPerM = 0.0;  // 1 / the voxmap's voxel size, 1/m
   double estimatedProbes = 0.0;
+  /// Outward pseudo-normals, when every part is closed and consistently oriented and the
+  /// body is at most kMaxPseudoNormalTriangles: which side of the nearest surface a probe
+  /// is on then says whether it is inside that part, without rays.
+  std::unique_ptr<PseudoNormals> normals;
+  std::vector<Bounds> partBounds;  // per part, local frame
   std::unique_ptr<ProbeCells> probes;
   std::vector<RayCrossing> hits;
   std::vector<std::uint32_t> parts;
@@ -122,11 +133,22 @@ struct ExactPenetration::Impl {
   std::vector<std::size_t> bucketStarts;
   std::vector<std::size_t> bucketFill;
   std::vector<std::uint32_t> ordered;
+  /// Least exact distance of an outside edge probe found on the way (by its nearest
+  /// surface point), m; the clearance starts from it.
+  double knownClearanceM = std::numeric_limits<double>::infinity();
 
   bool voteInside(ExactSide& target, const glm::dvec3& pointLocal);
+  /// The exact inside test of a probe near the target's surface: the side of the nearest
+  /// surface point's pseudo-normal when the target has them (a probe outside the nearest
+  /// part but within another part's box takes the vote), else the vote. Sets `depthM` to
+  /// the probe's distance to the surface when it found it (else leaves it negative).
+  bool insideNearSurface(ExactSide& target, const glm::dvec3& pointTarget, double hintM, double& depthM);
   Classified classify(const ExactSide& target, const glm::dvec3& pointTarget) const;
   /// Which probes within `radiusM` of `centreTarget` need looking at one by one.
   Reach reachOf(const ExactSide& target, const glm::dvec3& centreTarget, double radiusM) const;
+  /// The target's surface point nearest `pointTarget`, searched within `hintM` first.
+  std::optional<ClosestSurfacePoint> nearestSurface(const ExactSide& target, const glm::dvec3& pointTarget,
+                                                    double hintM) const;
   double depthOf(const ExactSide& target, const glm::dvec3& pointTarget, double hintM) const;
   /// The least distance of the clearance candidates to their targets' surfaces, m.
   double leastClearance();
@@ -154,6 +176,27 @@ bool ExactPenetration::Impl::voteInside(ExactSide& target, const glm::dvec3& poi
     votes += odd ? 1 : 0;
   }
   return votes >= 2;
+}
+
+bool ExactPenetration::Impl::insideNearSurface(ExactSide& target, const glm::dvec3& pointTarget, double hintM,
+                                               double& depthM) {
+  depthM = -1.0;
+  if (!target.normals) return voteInside(target, pointTarget);
+  const std::optional<ClosestSurfacePoint> nearest = nearestSurface(target, pointTarget, hintM);
+  if (!nearest) return voteInside(target, pointTarget);
+  // Bærentzen and Aanæs: inside the nearest part iff behind its angle-weighted pseudo-normal
+  const glm::dvec3 normal = target.normals->normalAt(*nearest, kFeatureToleranceM);
+  if (glm::dot(pointTarget - nearest->point, normal) < 0.0) {
+    depthM = nearest->distanceM;
+    return true;
+  }
+  // outside the nearest part: outside the union unless another part may hold it
+  for (std::uint32_t part = 0; part < target.partBounds.size(); ++part) {
+    if (part == nearest->part) continue;
+    if (distanceToBox(pointTarget, target.partBounds[part]) == 0.0) return voteInside(target, pointTarget);
+  }
+  depthM = nearest->distanceM;
+  return false;
 }
 
 Classified ExactPenetration::Impl::classify(const ExactSide& target, const glm::dvec3& pointTarget) const {
@@ -209,11 +252,19 @@ Reach ExactPenetration::Impl::reachOf(const ExactSide& target, const glm::dvec3&
   return {freeVoxels < 1, freeVoxels <= kClearanceVoxels};
 }
 
+std::optional<ClosestSurfacePoint> ExactPenetration::Impl::nearestSurface(const ExactSide& target,
+                                                                          const glm::dvec3& pointTarget,
+                                                                          double hintM) const {
+  // most contacts are shallow: a small search radius first, the whole body if need be
+  for (const double radiusM : {hintM, target.rayLengthM}) {
+    if (auto nearest = target.scene->closestPoint(pointTarget, radiusM)) return nearest;
+  }
+  return std::nullopt;
+}
+
 double ExactPenetration::Impl::depthOf(const ExactSide& target, const glm::dvec3& pointTarget,
                                        double hintM) const {
-  // most contacts are shallow: a small search radius first, the whole body if need be
-  auto nearest = target.scene->closestPoint(pointTarget, hintM);
-  if (!nearest) nearest = target.scene->closestPoint(pointTarget, target.rayLengthM);
+  const std::optional<ClosestSurfacePoint> nearest = nearestSurface(target, pointTarget, hintM);
   return nearest ? nearest->distanceM : 0.0;
 }
 
@@ -250,6 +301,7 @@ void ExactPenetration::Impl::probeInto(std::size_t from, std::span<const ProbeBl
         const glm::dvec3 pointTarget = toTarget(pointLocal);
         const Classified k = classify(target, pointTarget);
         bool isInside = false;
+        double knownDepthM = -1.0;
         switch (k.verdict) {
           case Verdict::Outside:
             continue;
@@ -262,14 +314,19 @@ void ExactPenetration::Impl::probeInto(std::size_t from, std::span<const ProbeBl
             break;
           case Verdict::Unknown:
             ++sample.candidates;
-            isInside = voteInside(target, pointTarget);
-            if (!isInside && onEdge && withClearance)
-              clearance.push_back({0.0, pointTarget, static_cast<std::uint8_t>(1 - from)});
+            isInside = insideNearSurface(target, pointTarget, k.depthHintM, knownDepthM);
+            if (!isInside && onEdge && withClearance) {
+              if (knownDepthM >= 0.0 && knownDepthM <= target.clearanceCapM) {
+                knownClearanceM = std::min(knownClearanceM, knownDepthM);
+              } else {
+                clearance.push_back({0.0, pointTarget, static_cast<std::uint8_t>(1 - from)});
+              }
+            }
             break;
         }
         if (!isInside) continue;
         ++sample.inside;
-        const double depthM = depthOf(target, pointTarget, k.depthHintM);
+        const double depthM = knownDepthM >= 0.0 ? knownDepthM : depthOf(target, pointTarget, k.depthHintM);
         if (depthM > sample.depthM) {
           sample.depthM = depthM;
           sample.deepestWorld = apply(fromToWorld, pointLocal);
@@ -282,7 +339,7 @@ void ExactPenetration::Impl::probeInto(std::size_t from, std::span<const ProbeBl
 }
 
 ExactPenetration::ExactPenetration(const ExactBody& a, const ExactBody& b, double probeSpacingM,
-                                   double maxWholeProbes)
+                                   const ExactPenetrationLimits& limits)
     : impl_(std::make_unique<Impl>()) {
   if (!(probeSpacingM > 0.0) || !std::isfinite(probeSpacingM)) {
     throw Error("exact penetration: the probe spacing must be a positive length, got " +
@@ -303,6 +360,21 @@ ExactPenetration::ExactPenetration(const ExactBody& a, const ExactBody& b, doubl
       }
     }
     side.rayLengthM = 2.0 * glm::length(side.boundsLocal.extent()) + 1.0;
+    std::size_t triangles = 0;
+    bool closed = true;
+    for (const TriangleMesh* mesh : side.meshes) {
+      triangles += mesh->triangles.size();
+      Bounds bounds;
+      for (const glm::vec3& p : mesh->positionsWorld) bounds.add(glm::dvec3(p));
+      side.partBounds.push_back(bounds);
+    }
+    if (triangles <= limits.maxPseudoNormalTriangles) {
+      for (const TriangleMesh* mesh : side.meshes) {
+        const MeshTopology topology = computeTopology(*mesh);
+        closed = closed && topology.closed() && topology.consistentlyOriented() && signedVolume(*mesh) > 0.0;
+      }
+      if (closed) side.normals = std::make_unique<PseudoNormals>(side.meshes);
+    }
     if (side.voxmap) {
       const double s = side.voxmap->grid().voxelSizeM;
       // a probe in a voxel at most kClearanceVoxels from a surface voxel is at most this far
@@ -318,7 +390,7 @@ ExactPenetration::ExactPenetration(const ExactBody& a, const ExactBody& b, doubl
     ExactSide& side = impl_->sides[i];
     const ExactSide& other = impl_->sides[1 - i];
     // the smaller surface is always probed whole; the larger when it is small enough
-    const bool whole = side.estimatedProbes <= maxWholeProbes ||
+    const bool whole = side.estimatedProbes <= limits.maxWholeProbes ||
                        side.estimatedProbes < other.estimatedProbes ||
                        (side.estimatedProbes == other.estimatedProbes && i == 0);
     // cells about two voxels of the other body's voxmap across, so that culling a cell
@@ -337,6 +409,7 @@ PenetrationSample ExactPenetration::measure(const Pose& aToWorld, const Pose& bT
   PenetrationSample sample;
   m.clearance.clear();
   m.survivors.clear();
+  m.knownClearanceM = std::numeric_limits<double>::infinity();
   const Pose toWorld[2] = {aToWorld, bToWorld};
   const Pose aToB = compose(inverse(bToWorld), aToWorld);
   const Pose bToA = compose(inverse(aToWorld), bToWorld);
@@ -389,12 +462,13 @@ double ExactPenetration::Impl::leastClearance() {
   for (std::uint32_t i = 0; i < clearance.size(); ++i)
     ordered[bucketFill[bucketOf(clearance[i].lowerBoundM)]++] = i;
 
-  double bestM = std::numeric_limits<double>::infinity();
+  double bestM = knownClearanceM;
   for (std::size_t b = 0; b < kClearanceBuckets; ++b) {
-    if (static_cast<double>(b) * widthM >= bestM) break;
+    // below the resolution, nothing more to win
+    if (static_cast<double>(b) * widthM >= bestM || bestM <= kClearanceResolutionM) break;
     for (std::size_t k = bucketStarts[b]; k < bucketStarts[b + 1]; ++k) {
       const ClearanceCandidate& c = clearance[ordered[k]];
-      if (c.lowerBoundM >= bestM) continue;
+      if (c.lowerBoundM >= bestM || bestM <= kClearanceResolutionM) continue;
       const ExactSide& target = sides[c.target];
       if (const auto nearest =
               target.scene->closestPoint(c.pointTarget, std::min(bestM, target.clearanceCapM))) {

@@ -18,6 +18,14 @@
 /// exact distance to the other body's surface (closest point). The measure's depth is the
 /// deepest probe's, in either direction.
 ///
+/// A body of at most kMaxPseudoNormalTriangles whose parts are all closed and
+/// consistently oriented answers without rays: a probe is inside the part of its nearest
+/// surface point exactly when it lies behind that point's angle-weighted pseudo-normal
+/// (Bærentzen and Aanæs 2005), and the same query gives its depth. A probe outside that
+/// part but within another part's bounding box (overlapping parts) still takes the vote.
+/// On mating surfaces, where most probes are near the other surface, this is what keeps
+/// a check affordable.
+///
 /// Which probes. Probing a small body (a moving object) is done once, at construction,
 /// in its local frame. A large body (a static scene of millions of triangles) is probed
 /// on demand, region by region (blocks of probe cells, probe_cells.h), only where the
@@ -31,9 +39,9 @@
 /// the voxelizer found outside, so it is outside without rays; one in an interior voxel
 /// (value 1) is inside for the same reason and only its depth is measured; only probes in
 /// surface voxels (value 2, or a voxel of a paged voxmap that is not resident) take the
-/// ray vote. The filter is exact as long as the voxelizer's inside/outside votes were (it
+/// exact test. The filter is exact as long as the voxelizer's inside/outside votes were (it
 /// warns otherwise). Without a voxmap, the body's bounding box filters instead and every
-/// probe inside the box takes the vote: fine for small meshes, slow for large ones.
+/// probe inside the box takes the exact test: fine for small meshes, slow for large ones.
 ///
 /// Clearance. Probes outside the other body but within a few voxels of it (kClearanceVoxels,
 /// or kClearanceVoxels · kProbesPerVoxel · probeSpacingM without a voxmap) give the least
@@ -41,7 +49,7 @@
 /// close it came. The least distance between two polyhedral surfaces is reached at a
 /// vertex facing a face or between two edges, so only vertex and edge probes (of both
 /// bodies) are measured for it: exact for a vertex facing a face, within half the probe
-/// spacing between edges.
+/// spacing between edges. A clearance found below kClearanceResolutionM ends the search.
 ///
 /// Threads: construction builds Embree scenes and probes (allocates, may throw
 /// voxhap::Error); measure() and inside() are for one thread at a time (they reuse
@@ -91,7 +99,7 @@ struct PenetrationSample {
   PenetrationDirection direction = PenetrationDirection::None;  ///< whose probe it is
   std::uint64_t probes = 0;      ///< probes of both surfaces the measurement considered
   std::uint64_t nearProbes = 0;  ///< of which near enough to the other body to be looked at one by one
-  std::uint64_t candidates = 0;  ///< of which took the exact inside test (ray vote)
+  std::uint64_t candidates = 0;  ///< of which took the exact inside test (pseudo-normal side or ray vote)
   std::uint64_t inside = 0;      ///< probes found inside the other body (by the vote or an interior voxel)
   /// Least exact distance from a vertex or edge probe outside the other body to that
   /// body's surface, m, among the probes within the clearance range (infinite when there
@@ -102,22 +110,36 @@ struct PenetrationSample {
 /// Probes within this many voxels (chessboard, in the other body's voxmap) of a surface
 /// voxel get their clearance measured exactly.
 inline constexpr int kClearanceVoxels = 4;
+/// Once the clearance found is this small, m, the rest of the candidates are not measured
+/// (they could lower it by no more than that): mating surfaces touch.
+inline constexpr double kClearanceResolutionM = 1e-6;
 /// The default probe spacing is the static voxel size over this: probes a quarter voxel apart.
 inline constexpr int kProbesPerVoxel = 4;
 /// A body whose surface takes at most this many probes is probed whole at construction
 /// (the smaller body of a pair always is); a larger one on demand.
 inline constexpr double kMaxWholeProbes = 4.0e6;
+/// A body of at most this many triangles, every part closed and consistently oriented,
+/// decides the side of a probe near its surface by pseudo-normals instead of rays.
+inline constexpr std::size_t kMaxPseudoNormalTriangles = std::size_t{1} << 19;
 /// Probes of an on-demand body kept cached across measurements; beyond, the cache starts over.
 inline constexpr std::size_t kMaxCachedProbes = std::size_t{1} << 23;
+
+/// Where ExactPenetration changes method with size (tests lower them to try both ways).
+struct ExactPenetrationLimits {
+  /// The larger surface of a pair is probed on demand beyond this many probes.
+  double maxWholeProbes = kMaxWholeProbes;
+  /// A body of more triangles (or with a part not closed or not consistently oriented)
+  /// takes the ray vote instead of pseudo-normals.
+  std::size_t maxPseudoNormalTriangles = kMaxPseudoNormalTriangles;
+};
 
 class ExactPenetration {
 public:
   /// Bodies `a` and `b` (see ExactBody), probed at `probeSpacingM` (> 0, m; e.g. the
-  /// static voxel size / kProbesPerVoxel). The larger surface is probed on demand when it
-  /// would take more than `maxWholeProbes` probes (tests lower it). Throws voxhap::Error
-  /// for a bad spacing or when Embree fails.
+  /// static voxel size / kProbesPerVoxel). Throws voxhap::Error for a bad spacing or when
+  /// Embree fails.
   ExactPenetration(const ExactBody& a, const ExactBody& b, double probeSpacingM,
-                   double maxWholeProbes = kMaxWholeProbes);
+                   const ExactPenetrationLimits& limits = {});
   ~ExactPenetration();
   ExactPenetration(const ExactPenetration&) = delete;
   ExactPenetration& operator=(const ExactPenetration&) = delete;

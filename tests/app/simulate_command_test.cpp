@@ -1,11 +1,16 @@
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "haptics/geometry/mesh_builder.h"
+#include "haptics/scene/gltf_writer.h"
 #include "support/cli_runner.h"
 #include "support/gltf_fixtures.h"
+#include "support/contact_scenes.h"
 
 namespace voxhap::test {
 namespace {
@@ -118,6 +123,93 @@ TEST_F(SimulateCommand, BadVoxelSizeIsAUsageError) {
                            "--voxel-size", "-1mm"});
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("voxel-size"), std::string::npos) << r.err;
+}
+
+TEST_F(SimulateCommand, CheckExactSeesAnEdgeCuttingIntoAFaceBetweenVertices) {
+  // the plate (top face z = 0) and a 120 mm rod of square section turned 45° about its
+  // axis, placed so that its lowest edge runs 0.3 mm below the top face across the whole
+  // plate while its vertices are beyond the plate's sides: nothing a vertex check sees
+  Scene scene;
+  scene.sourceName = "edge";
+  scene.objects.push_back(plate());
+  scene.objects.push_back(meshObject("rod", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m,
+              glm::translate(glm::dmat4(1.0), glm::dvec3(0.0013, 0.0021, 0.005 * std::sqrt(2.0) - 0.0003)) *
+                  glm::rotate(glm::dmat4(1.0), glm::radians(45.0), glm::dvec3(1, 0, 0)),
+              {0.06, 0.005, 0.005});
+  }));
+  writeGlbFile(scene, dir_ / "edge.glb");
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n0.02 1 0 0 0 0 0 0\n");
+  const CliRun r = voxhap({"simulate", (dir_ / "edge.glb").string(), "--move", "rod", "--script", script,
+                           "--voxel-size", "1mm", "--capacity", "100000", "--check-exact", "--json"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& exact = j.at("exact_penetration");
+  EXPECT_EQ(exact.at("checks"), 21);  // frame 0 and after each of the 20
+  EXPECT_EQ(exact.at("every_frames"), 1);
+  EXPECT_DOUBLE_EQ(exact.at("probe_spacing_m").get<double>(), 0.00025);
+  // as placed, frame 0: the edge's depth exactly (the engine then pushes the rod out)
+  EXPECT_NEAR(exact.at("max_depth_m").get<double>(), 0.0003, 1e-6) << exact.dump(2);
+  EXPECT_NEAR(exact.at("max_depth_voxels").get<double>(), 0.3, 1e-3);
+  EXPECT_EQ(exact.at("max_depth_frame"), 0);
+  EXPECT_EQ(exact.at("max_depth_into"), "rod into static");
+  EXPECT_NEAR(exact.at("max_depth_world_m")[2].get<double>(), -0.0003, 1e-6);
+  EXPECT_GE(exact.at("frames_with_penetration").get<int>(), 1);
+  EXPECT_GT(exact.at("exact_tests").get<double>(), 0.0);
+
+  const CliRun text = voxhap({"simulate", (dir_ / "edge.glb").string(), "--move", "rod", "--script", script,
+                              "--voxel-size", "1mm", "--capacity", "100000", "--check-exact-every", "5"});
+  ASSERT_EQ(text.exitCode, 0) << text.err;
+  EXPECT_NE(text.out.find("exact depth     0.300 mm (0.30 voxels of 1.000 mm) after frame 0"),
+            std::string::npos)
+      << text.out;
+  EXPECT_NE(text.out.find("rod into static"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("exact checks    5 (frames 0, 5, 10, … and the last)"), std::string::npos)
+      << text.out;
+}
+
+TEST_F(SimulateCommand, CheckExactEveryNFramesAndTheClearanceOfTheLiftedPeg) {
+  // the peg starts 1 mm above the mouth of its hole and goes up: no penetration, the
+  // clearance about that gap
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n0.2 1 0 0 0 0 0 0.020\n");
+  const CliRun r = voxhap({"simulate", asset("peg-in-hole.glb"), "--move", "peg", "--script", script,
+                           "--voxel-size", "1mm", "--duration", "0.05", "--check-exact-every", "20",
+                           "--probe-spacing", "0.5mm", "--json"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto exact = nlohmann::json::parse(r.out).at("exact_penetration");
+  EXPECT_EQ(exact.at("checks"), 4);  // frames 0, 20, 40 and the last, 50
+  EXPECT_EQ(exact.at("every_frames"), 20);
+  EXPECT_DOUBLE_EQ(exact.at("probe_spacing_m").get<double>(), 0.0005);
+  EXPECT_EQ(exact.at("max_depth_m").get<double>(), 0.0);
+  EXPECT_TRUE(exact.at("max_depth_frame").is_null());
+  EXPECT_TRUE(exact.at("max_depth_into").is_null());
+  ASSERT_TRUE(exact.at("min_clearance_m").is_number()) << exact.dump(2);
+  EXPECT_GT(exact.at("min_clearance_m").get<double>(), 0.0005);
+  EXPECT_LT(exact.at("min_clearance_m").get<double>(), 0.0015);
+  for (const char* key : {"probes", "near_probes", "exact_tests", "wall_s", "frames_with_penetration"}) {
+    EXPECT_TRUE(exact.at(key).is_number()) << key;
+  }
+  // without the option there is no such object
+  const CliRun plain = voxhap({"simulate", asset("peg-in-hole.glb"), "--move", "peg", "--script", script,
+                               "--voxel-size", "1mm", "--duration", "0.01", "--json"});
+  ASSERT_EQ(plain.exitCode, 0) << plain.err;
+  EXPECT_FALSE(nlohmann::json::parse(plain.out).contains("exact_penetration"));
+}
+
+TEST_F(SimulateCommand, CheckExactOptionsAreChecked) {
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n");
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{"--check-exact-every", "0"},
+        std::vector<std::string>{"--probe-spacing", "1mm"},
+        std::vector<std::string>{"--check-exact", "--probe-spacing", "0mm"}}) {
+    std::vector<std::string> args = {"simulate", asset("peg-in-hole.glb"), "--move", "peg", "--script",
+                                     script};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliRun r = voxhap(args);
+    EXPECT_EQ(r.exitCode, 2) << extra[0];
+    EXPECT_NE(r.err.find(extra.back() == "0" ? "check-exact-every" : "probe-spacing"), std::string::npos)
+        << r.err;
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -57,6 +58,20 @@ void expectVerticesOutside(ExactPenetration& truth, std::size_t other, const Sce
   }
 }
 
+/// The ways a measurement may go: filtered by voxmaps or by bounding boxes, the side of a
+/// probe near a surface by pseudo-normals or by the ray vote.
+ExactPenetrationLimits voting() {
+  ExactPenetrationLimits limits;
+  limits.maxPseudoNormalTriangles = 0;
+  return limits;
+}
+const std::pair<bool, ExactPenetrationLimits> kWays[] = {
+    {true, {}}, {false, {}}, {true, voting()}, {false, voting()}};
+std::string wayName(bool filtered, const ExactPenetrationLimits& limits) {
+  return std::string(filtered ? "voxmaps filter" : "bounding boxes filter") +
+         (limits.maxPseudoNormalTriangles == 0 ? ", rays vote" : ", pseudo-normals");
+}
+
 /// The 100 × 100 × 10 mm plate (top face z = 0), static, with its voxmap.
 struct Plate {
   SceneObject object = test::plate();
@@ -72,10 +87,10 @@ TEST(ExactPenetration, SeesAnEdgeCuttingIntoAFaceBetweenItsVertices) {
   Pose pose;
   pose.position = {0.0013, 0.0021, 0.005 * kSqrt2 - 0.0003};  // the edge 0.3 mm below the top face
 
-  for (const bool filtered : {true, false}) {
-    SCOPED_TRACE(filtered ? "plate's voxmap filters" : "bounding boxes filter");
+  for (const auto& [filtered, limits] : kWays) {
+    SCOPED_TRACE(wayName(filtered, limits));
     ExactPenetration truth(bodyOf(rod, nullptr), bodyOf(plate.object, filtered ? &plate.voxmap : nullptr),
-                           kSpacing);
+                           kSpacing, limits);
     EXPECT_TRUE(truth.probedWhole(0));
     EXPECT_TRUE(truth.probedWhole(1));
     expectVerticesOutside(truth, 1, rod, pose);
@@ -110,7 +125,9 @@ TEST(ExactPenetration, SeesAStaticCornerPokingIntoAMovingFace) {
   PenetrationSample whole;
   for (const double maxWhole : {kMaxWholeProbes, 1000.0}) {
     SCOPED_TRACE(maxWhole);
-    ExactPenetration truth(bodyOf(cube, &cubeVoxmap), bodyOf(diamond, &diamondVoxmap), kSpacing, maxWhole);
+    ExactPenetrationLimits limits;
+    limits.maxWholeProbes = maxWhole;
+    ExactPenetration truth(bodyOf(cube, &cubeVoxmap), bodyOf(diamond, &diamondVoxmap), kSpacing, limits);
     EXPECT_TRUE(truth.probedWhole(0));
     EXPECT_EQ(truth.probedWhole(1), maxWhole == kMaxWholeProbes);
     expectVerticesOutside(truth, 1, cube, pose);
@@ -151,10 +168,10 @@ TEST(ExactPenetration, TwoMovingBodiesAnEdgeOfOneIntoAFaceOfTheOther) {
   const Pose cubeToWorld = motion;
   const Pose postToWorld = compose(motion, postInCube);
 
-  for (const bool filtered : {true, false}) {
-    SCOPED_TRACE(filtered ? "voxmaps filter" : "bounding boxes filter");
+  for (const auto& [filtered, limits] : kWays) {
+    SCOPED_TRACE(wayName(filtered, limits));
     ExactPenetration truth(bodyOf(cube, filtered ? &cubeVoxmap : nullptr),
-                           bodyOf(post, filtered ? &postVoxmap : nullptr), kSpacing);
+                           bodyOf(post, filtered ? &postVoxmap : nullptr), kSpacing, limits);
     expectVerticesOutside(truth, 0, post, postInCube);
     expectVerticesOutside(truth, 1, cube, inverse(postInCube));
 
@@ -168,7 +185,7 @@ TEST(ExactPenetration, TwoMovingBodiesAnEdgeOfOneIntoAFaceOfTheOther) {
 
     // the same pair the other way round
     ExactPenetration swapped(bodyOf(post, filtered ? &postVoxmap : nullptr),
-                             bodyOf(cube, filtered ? &cubeVoxmap : nullptr), kSpacing);
+                             bodyOf(cube, filtered ? &cubeVoxmap : nullptr), kSpacing, limits);
     const PenetrationSample t = swapped.measure(postToWorld, cubeToWorld);
     EXPECT_NEAR(t.depthM, 0.0004, kExactM);
     EXPECT_EQ(t.direction, PenetrationDirection::AIntoB);
@@ -178,10 +195,10 @@ TEST(ExactPenetration, TwoMovingBodiesAnEdgeOfOneIntoAFaceOfTheOther) {
 TEST(ExactPenetration, WithoutContactDepthIsZeroAndTheClearanceExact) {
   const Plate plate;
   const SceneObject cube = box("cube", glm::dmat4(1.0), {0.01, 0.01, 0.01});
-  for (const bool filtered : {true, false}) {
-    SCOPED_TRACE(filtered ? "plate's voxmap filters" : "bounding boxes filter");
+  for (const auto& [filtered, limits] : kWays) {
+    SCOPED_TRACE(wayName(filtered, limits));
     ExactPenetration truth(bodyOf(cube, nullptr), bodyOf(plate.object, filtered ? &plate.voxmap : nullptr),
-                           kSpacing);
+                           kSpacing, limits);
     // 2 mm above the top face (2 voxels; within the clearance range either way)
     Pose above;
     above.position = {0.0013, 0.0021, 0.012};
@@ -210,6 +227,30 @@ TEST(ExactPenetration, MeasuresDeepPenetrationThroughInteriorVoxels) {
   const PenetrationSample s = truth.measure(sunk, Pose{});
   EXPECT_NEAR(s.depthM, 0.003, kExactM);
   EXPECT_GT(s.inside, s.candidates / 2);  // most are in interior voxels, without a vote
+}
+
+TEST(ExactPenetration, InsideAnyOfOverlappingPartsIsInside) {
+  // a plus of two overlapping bars; the cube sits inside the second bar only, where the
+  // nearest surface is the first bar's face buried in the second: outside that part,
+  // inside the union
+  SceneObject plus;
+  plus.name = "plus";
+  plus.parts.push_back(box("bar x", glm::dmat4(1.0), {0.010, 0.002, 0.002}, ObjectRole::Static).parts[0]);
+  plus.parts.push_back(box("bar y", glm::dmat4(1.0), {0.002, 0.010, 0.002}, ObjectRole::Static).parts[0]);
+  const Voxmap plusVoxmap = voxmapOf(plus);
+  const SceneObject cube = box("cube", glm::dmat4(1.0), {0.0005, 0.0005, 0.0005});
+  Pose pose;
+  pose.position = {0.0, 0.003, 0.0};  // y from 2.5 to 3.5 mm, inside the second bar
+  for (const auto& [filtered, limits] : kWays) {
+    SCOPED_TRACE(wayName(filtered, limits));
+    ExactPenetration truth(bodyOf(cube, nullptr), bodyOf(plus, filtered ? &plusVoxmap : nullptr), kSpacing,
+                           limits);
+    const PenetrationSample s = truth.measure(pose, Pose{});
+    EXPECT_EQ(s.direction, PenetrationDirection::AIntoB);
+    EXPECT_GT(s.inside, 0u);
+    // the depth is the distance to the nearest part's surface, the buried face included
+    EXPECT_NEAR(s.depthM, 0.0015, kExactM);
+  }
 }
 
 TEST(ExactPenetration, TheInsideVoteAndBadSpacing) {
