@@ -240,11 +240,11 @@ std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& k
   if (!problem.empty()) throw CacheFileError("is corrupt (" + problem + ")");
 
   const std::size_t blockBytes = std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
-  if (budgetBytes < tableBytes + blockBytes) {
+  if (budgetBytes < tableBytes + blockBytes + Voxmap::kSlotMarkBytes) {
     throw Error("a voxel memory of " + std::to_string(budgetBytes) + " bytes cannot hold the voxmap's tables (" +
                 std::to_string(tableBytes) + " bytes) and one chunk of voxel words; allow more");
   }
-  const std::size_t slots = static_cast<std::size_t>((budgetBytes - tableBytes) / blockBytes);
+  const std::size_t slots = static_cast<std::size_t>((budgetBytes - tableBytes) / (blockBytes + Voxmap::kSlotMarkBytes));
   std::vector<std::uint32_t> fileBlockOfEntry(chunks.size(), 0xFFFFFFFFu);
   for (std::size_t i = 0; i < chunks.size(); ++i) {
     if (chunks[i] & Voxmap::kUniform) continue;
@@ -253,8 +253,7 @@ std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& k
   }
   BudgetedVoxmap result;
   result.wordBytes = wordBytes;
-  result.voxmap = Voxmap(grid, encoding, std::move(hyper), std::move(chunks), std::vector<std::uint8_t>(slots * blockBytes),
-                         std::move(chunkDistances));
+  result.voxmap = Voxmap::paged(grid, encoding, std::move(hyper), std::move(chunks), slots, std::move(chunkDistances));
   result.pager = std::make_shared<VoxelPager>(result.voxmap.pagedArrays(), file, wordsOffset,
                                               std::move(fileBlockOfEntry), slots);
   return result;

@@ -1,12 +1,7 @@
 #include "haptics/voxel/voxel_pager.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <chrono>
-#include <cstring>
+#include <cassert>
 
 #include <glm/common.hpp>
 
@@ -15,34 +10,45 @@
 namespace voxhap {
 namespace {
 
-/// How long the pager sleeps when it has nothing to do.
+/// How long the pager sleeps when it has nothing to do, or waits.
 constexpr auto kIdle = std::chrono::microseconds(200);
-/// A slot asked for within this many frames is not taken back.
-constexpr std::uint64_t kRecentFrames = 50;
+/// At most one slot in this many is taken back at once (at least one).
+constexpr std::size_t kTakeBackShare = 64;
 
 }  // namespace
 
-VoxelPager::VoxelPager(const Voxmap::PagedArrays& arrays, const std::filesystem::path& file,
-                       std::uint64_t wordsOffset, std::vector<std::uint32_t> fileBlockOfEntry, std::size_t slotCount)
+VoxelPager::VoxelPager(const Voxmap::PagedArrays& arrays, std::unique_ptr<BlockReader> reader,
+                       std::vector<std::uint32_t> fileBlockOfEntry, std::size_t slotCount)
     : arrays_(arrays),
-      wordsOffset_(wordsOffset),
+      reader_(std::move(reader)),
       blockBytes_(arrays.blockBytes),
       fileBlockOfEntry_(std::move(fileBlockOfEntry)),
       slotOfEntry_(fileBlockOfEntry_.size(), kNone),
-      slotEntry_(slotCount, kNone),
-      slotAskedFrame_(slotCount, 0) {
+      slotEntry_(slotCount, kNone) {
   if (slotCount == 0) throw Error("the voxel memory budget holds no chunk of voxel words");
-  fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd_ < 0) throw Error(file.string() + ": cannot open for paging: " + std::strerror(errno));
+  assert(arrays_.slotLastUse && arrays_.useClock && arrays_.slotCount == slotCount && "not a Voxmap::paged");
+  assert(reader_);
   freeSlots_.reserve(slotCount);
   for (std::size_t s = slotCount; s-- > 0;) freeSlots_.push_back(static_cast<std::uint32_t>(s));
+  byAge_.reserve(slotCount);
+  lastSeenClock_ = arrays_.clockNow();
+  lastClockChange_ = std::chrono::steady_clock::now();
   thread_ = std::thread([this] { run(); });
 }
+
+VoxelPager::VoxelPager(const Voxmap::PagedArrays& arrays, const std::filesystem::path& file,
+                       std::uint64_t wordsOffset, std::vector<std::uint32_t> fileBlockOfEntry, std::size_t slotCount)
+    : VoxelPager(arrays, std::make_unique<FileBlockReader>(file, wordsOffset), std::move(fileBlockOfEntry),
+                 slotCount) {}
 
 VoxelPager::~VoxelPager() {
   stop_.store(true);
   if (thread_.joinable()) thread_.join();
-  if (fd_ >= 0) ::close(fd_);
+}
+
+void VoxelPager::beginFrame() noexcept {
+  frame_.fetch_add(1, std::memory_order_seq_cst);
+  arrays_.tick();
 }
 
 void VoxelPager::request(const glm::ivec3& loChunk, const glm::ivec3& hiChunk) noexcept {
@@ -81,7 +87,6 @@ void VoxelPager::run() {
 bool VoxelPager::serve(const Box& box) {
   const glm::ivec3 lo = glm::max(box.lo, glm::ivec3(0));
   const glm::ivec3 hi = glm::min(box.hi, arrays_.grid.dimsChunks() - 1);
-  const std::uint64_t now = frame_.load(std::memory_order_relaxed);
   for (int z = lo.z; z <= hi.z; ++z) {
     for (int y = lo.y; y <= hi.y; ++y) {
       for (int x = lo.x; x <= hi.x; ++x) {
@@ -91,18 +96,23 @@ bool VoxelPager::serve(const Box& box) {
         const std::uint32_t block = fileBlockOfEntry_[entry];
         if (block == kNone) continue;  // a uniform chunk: always resident
         std::uint32_t slot = slotOfEntry_[entry];
-        if (slot == kNone) {
-          slot = freeSlot();
-          if (slot == kNone) return false;
-          std::uint8_t* into = arrays_.pool + std::size_t{slot} * blockBytes_;
-          const auto at = static_cast<off_t>(wordsOffset_ + std::uint64_t{block} * blockBytes_);
-          if (::pread(fd_, into, blockBytes_, at) != static_cast<ssize_t>(blockBytes_)) continue;  // stays missing
-          slotEntry_[slot] = static_cast<std::uint32_t>(entry);
-          slotOfEntry_[entry] = slot;
-          arrays_.publish(entry, slot);
-          blocksRead_.fetch_add(1, std::memory_order_relaxed);
+        if (slot != kNone) {
+          arrays_.markUse(slot, arrays_.clockNow());  // asked for: about to be read
+          continue;
         }
-        slotAskedFrame_[slot] = now;
+        slot = freeSlot();
+        if (slot == kNone) return false;
+        // nothing reaches the slot now: it is free, or taken back after a grace period
+        if (!reader_->read(block, {arrays_.pool + std::size_t{slot} * blockBytes_, blockBytes_})) {
+          freeSlots_.push_back(slot);  // the chunk stays missing; a later request tries again
+          readFailures_.fetch_add(1, std::memory_order_relaxed);
+          continue;
+        }
+        slotEntry_[slot] = static_cast<std::uint32_t>(entry);
+        slotOfEntry_[entry] = slot;
+        arrays_.markUse(slot, arrays_.clockNow());
+        arrays_.publish(entry, slot);  // release: after the words
+        blocksRead_.fetch_add(1, std::memory_order_relaxed);
       }
     }
   }
@@ -110,37 +120,68 @@ bool VoxelPager::serve(const Box& box) {
 }
 
 std::uint32_t VoxelPager::freeSlot() {
-  if (!freeSlots_.empty()) {
-    const std::uint32_t slot = freeSlots_.back();
-    freeSlots_.pop_back();
-    return slot;
+  if (freeSlots_.empty()) {
+    std::vector<std::uint32_t> taken;
+    for (;;) {
+      if (stop_.load(std::memory_order_relaxed)) return kNone;
+      takeBackLeastRecentlyUsed(taken);
+      if (!taken.empty()) break;
+      idleWhileWaiting();  // every slot in use: wait until some age
+    }
+    if (!waitForFrames()) return kNone;
+    takenBack_.fetch_add(taken.size(), std::memory_order_relaxed);
+    freeSlots_.insert(freeSlots_.end(), taken.begin(), taken.end());
   }
-  // take back a batch of the slots least recently asked for (clock), unpublish them, and
-  // wait two frames so that no lookup still reads them
-  const std::size_t batch = std::max<std::size_t>(1, slotEntry_.size() / 64);
-  const std::uint64_t now = frame_.load();
-  std::vector<std::uint32_t> taken;
-  taken.reserve(batch);
-  for (std::size_t looked = 0; looked < 2 * slotEntry_.size() && taken.size() < batch; ++looked) {
-    const auto slot = static_cast<std::uint32_t>(clockHand_);
-    clockHand_ = (clockHand_ + 1) % slotEntry_.size();
-    const bool recent = slotAskedFrame_[slot] + kRecentFrames > now && looked < slotEntry_.size();
-    if (slotEntry_[slot] == kNone || recent) continue;
-    arrays_.publish(slotEntry_[slot], Voxmap::kUniform | Voxmap::kMissingWord);
+  const std::uint32_t slot = freeSlots_.back();
+  freeSlots_.pop_back();
+  return slot;
+}
+
+void VoxelPager::takeBackLeastRecentlyUsed(std::vector<std::uint32_t>& taken) {
+  taken.clear();
+  byAge_.clear();
+  const std::uint32_t now = arrays_.clockNow();
+  for (std::uint32_t slot = 0; slot < slotEntry_.size(); ++slot) {
+    if (slotEntry_[slot] == kNone) continue;
+    // a mark read ahead of this thread's view of the clock counts as now
+    const auto age = static_cast<std::int32_t>(now - arrays_.lastUse(slot));
+    if (age >= static_cast<std::int32_t>(kInUseTicks)) byAge_.emplace_back(static_cast<std::uint32_t>(age), slot);
+  }
+  const std::size_t batch = std::min(byAge_.size(), std::max<std::size_t>(1, slotEntry_.size() / kTakeBackShare));
+  if (batch == 0) return;
+  // oldest first; equal ages by slot, so that runs repeat
+  const auto older = [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; };
+  std::partial_sort(byAge_.begin(), byAge_.begin() + static_cast<std::ptrdiff_t>(batch), byAge_.end(), older);
+  for (std::size_t k = 0; k < batch; ++k) {
+    const std::uint32_t slot = byAge_[k].second;
+    arrays_.unpublish(slotEntry_[slot]);
     slotOfEntry_[slotEntry_[slot]] = kNone;
     slotEntry_[slot] = kNone;
     taken.push_back(slot);
   }
+}
+
+bool VoxelPager::waitForFrames() {
   const std::uint64_t unpublishedAt = frame_.load(std::memory_order_seq_cst);
   while (frame_.load(std::memory_order_seq_cst) < unpublishedAt + 2) {
-    if (stop_.load(std::memory_order_relaxed)) return kNone;
-    std::this_thread::sleep_for(kIdle);
+    if (stop_.load(std::memory_order_relaxed)) return false;
+    idleWhileWaiting();
   }
-  freeSlots_.insert(freeSlots_.end(), taken.begin(), taken.end());
-  if (freeSlots_.empty()) return kNone;
-  const std::uint32_t slot = freeSlots_.back();
-  freeSlots_.pop_back();
-  return slot;
+  return true;
+}
+
+void VoxelPager::idleWhileWaiting() {
+  std::this_thread::sleep_for(kIdle);
+  const std::uint32_t now = arrays_.clockNow();
+  const auto t = std::chrono::steady_clock::now();
+  if (now != lastSeenClock_) {
+    lastSeenClock_ = now;
+    lastClockChange_ = t;
+  } else if (t - lastClockChange_ >= kSelfTickInterval) {
+    arrays_.tick();
+    lastSeenClock_ = now + 1;
+    lastClockChange_ = t;
+  }
 }
 
 }  // namespace voxhap

@@ -36,6 +36,17 @@ Voxmap::Voxmap(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::uint32_t
   voxelBytes_.resize(voxelBytes_.size() + kPadBytes, 0);
 }
 
+Voxmap Voxmap::paged(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::uint32_t> hyper,
+                     std::vector<std::uint32_t> chunks, std::size_t slotCount,
+                     std::vector<std::uint8_t> chunkDistances) {
+  const std::size_t blockBytes = std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
+  Voxmap v(grid, encoding, std::move(hyper), std::move(chunks), std::vector<std::uint8_t>(slotCount * blockBytes),
+           std::move(chunkDistances));
+  v.slotLastUse_.assign(slotCount, 0);
+  v.useClock_.assign(kClockWords, 0);
+  return v;
+}
+
 std::string Voxmap::validate(const VoxelGrid& grid, const VoxelEncoding& encoding,
                              std::span<const std::uint32_t> hyper, std::span<const std::uint32_t> chunks,
                              std::size_t voxelBytesSize, std::size_t chunkDistancesSize) {

@@ -14,12 +14,15 @@
 /// A lookup is two or three dependent loads, no branch on the bit width, no
 /// allocation; any thread may read concurrently.
 ///
-/// Paged (voxel_pager.h): when the voxel words do not fit a memory budget, voxelBytes_
-/// is a pool of slots that a pager thread fills from the cache file, and a mixed chunk's
-/// entry reads kUniform | kMissingWord until its words are resident. The pager publishes
-/// entries with release stores; lookups read them with acquire loads (plain loads on
-/// x86), so an unpaged voxmap pays nothing. word() returns kMissingWord for a chunk that
-/// is not resident; callers of a paged voxmap check for it.
+/// Paged (voxel_pager.h, Voxmap::paged): when the voxel words do not fit a memory budget,
+/// voxelBytes_ is a pool of slots that a pager thread fills from the cache file, and a
+/// mixed chunk's entry reads kUniform | kMissingWord until its words are resident; it
+/// then holds the index of its slot. word() returns kMissingWord for a chunk that is not
+/// resident; callers of a paged voxmap check for it. The pager publishes entries with
+/// release stores; lookups read them with acquire loads (plain loads on x86). A lookup that reads a resident chunk marks its slot with the use clock (a relaxed
+/// load, compare and, once a tick, a relaxed store; no lock, no allocation), so that the
+/// pager takes back the least recently used slots. An unpaged voxmap skips the mark on
+/// one predictable branch.
 
 #include <algorithm>
 #include <atomic>
@@ -50,6 +53,13 @@ public:
          std::vector<std::uint32_t> chunks, std::vector<std::uint8_t> voxelBytes,
          std::vector<std::uint8_t> chunkDistances);
 
+  /// A paged voxmap: the tables as above, but every mixed chunk entry reads
+  /// kUniform | kMissingWord, and the words live in a pool of `slotCount` slots that a
+  /// pager fills (pagedArrays()). Every slot's use mark starts at 0, as does the clock.
+  static Voxmap paged(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::uint32_t> hyper,
+                      std::vector<std::uint32_t> chunks, std::size_t slotCount,
+                      std::vector<std::uint8_t> chunkDistances);
+
   /// Why these arrays do not make a voxmap (an index out of range, a size that does
   /// not match the grid), or an empty string when they do. For data read from disk.
   static std::string validate(const VoxelGrid& grid, const VoxelEncoding& encoding,
@@ -69,6 +79,7 @@ public:
     const std::uint32_t chunkEntry = chunkEntry_(std::size_t{hyperEntry} * kChunksPerHyper +
                                                  chunkInHyper(ijkVoxel >> kChunkEdgeLog2));
     if (chunkEntry & kUniform) return chunkEntry & ~kUniform;
+    if (!slotLastUse_.empty()) markUse_(chunkEntry);
     const std::size_t at =
         (std::size_t{chunkEntry} * kVoxelsPerChunk + voxelInChunk(ijkVoxel)) * bytesPerWord_;
     VoxelWord w;
@@ -116,15 +127,20 @@ public:
 
   /// Bytes after the last block, so that a 4-byte read of the last word stays inside.
   static constexpr std::size_t kPadBytes = sizeof(VoxelWord);
+  /// Bytes a paged voxmap spends per slot beside its words: the slot's use mark.
+  static constexpr std::size_t kSlotMarkBytes = sizeof(std::uint32_t);
 
-  /// The arrays a pager (voxel_pager.h) fills: they live on the heap and stay where they
-  /// are when the voxmap is moved.
+  /// The arrays a pager (voxel_pager.h) fills and reads: they live on the heap and stay
+  /// where they are when the voxmap is moved. For an unpaged voxmap the use marks are null.
   struct PagedArrays {
     VoxelGrid grid;
     const std::uint32_t* hyper = nullptr;
     std::uint32_t* chunks = nullptr;  ///< entries published with release stores
     std::uint8_t* pool = nullptr;     ///< the slots, blockBytes each
     std::size_t blockBytes = 0;
+    std::uint32_t* slotLastUse = nullptr;  ///< per slot, the use clock when a lookup last read it
+    std::size_t slotCount = 0;
+    std::uint32_t* useClock = nullptr;     ///< the use clock, in ticks (voxel_pager.h)
 
     /// The index in `chunks` of chunk `ijkChunk` (inside the grid), or −1 when its
     /// hyperchunk is uniform.
@@ -135,16 +151,55 @@ public:
       if (hyperEntry & kUniform) return -1;
       return static_cast<std::int64_t>(std::size_t{hyperEntry} * kChunksPerHyper + chunkInHyper(ijkChunk));
     }
-    void publish(std::size_t index, std::uint32_t entry) const {
-      std::atomic_ref<std::uint32_t>(chunks[index]).store(entry, std::memory_order_release);
+    /// Pager: entry `index` now names `slot`, whose words it has written: a release store,
+    /// so that a lookup whose load reads the slot index also reads those words.
+    void publish(std::size_t index, std::uint32_t slot) const {
+      std::atomic_ref<std::uint32_t>(chunks[index]).store(slot, std::memory_order_release);
+    }
+    /// Pager: entry `index` reads missing again.
+    void unpublish(std::size_t index) const {
+      std::atomic_ref<std::uint32_t>(chunks[index]).store(kUniform | kMissingWord, std::memory_order_release);
+    }
+    /// The use clock now, ticks.
+    std::uint32_t clockNow() const {
+      return std::atomic_ref<std::uint32_t>(*useClock).load(std::memory_order_relaxed);
+    }
+    /// Advances the use clock by one tick.
+    void tick() const { std::atomic_ref<std::uint32_t>(*useClock).fetch_add(1, std::memory_order_relaxed); }
+    /// The tick at which `slot` was last read (or published, or asked for).
+    std::uint32_t lastUse(std::uint32_t slot) const {
+      return std::atomic_ref<std::uint32_t>(slotLastUse[slot]).load(std::memory_order_relaxed);
+    }
+    /// Marks `slot` used at tick `now`.
+    void markUse(std::uint32_t slot, std::uint32_t now) const {
+      std::atomic_ref<std::uint32_t>(slotLastUse[slot]).store(now, std::memory_order_relaxed);
     }
   };
-  PagedArrays pagedArrays() { return {grid_, hyper_.data(), chunks_.data(), voxelBytes_.data(), blockBytes()}; }
+  PagedArrays pagedArrays() {
+    return {grid_,
+            hyper_.data(),
+            chunks_.data(),
+            voxelBytes_.data(),
+            blockBytes(),
+            slotLastUse_.empty() ? nullptr : slotLastUse_.data(),
+            slotLastUse_.size(),
+            useClock_.empty() ? nullptr : useClock_.data()};
+  }
 
 private:
+  /// Words of useClock_: the clock, then padding to a cache line of its own.
+  static constexpr std::size_t kClockWords = 64 / sizeof(std::uint32_t);
+
   std::uint32_t chunkEntry_(std::size_t index) const {
     // atomic_ref needs a non-const object; the entry is only read here
     return std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(chunks_[index])).load(std::memory_order_acquire);
+  }
+  /// Marks pool slot `slot` used now; the store only once a tick, so the line stays shared.
+  void markUse_(std::uint32_t slot) const {
+    const std::uint32_t now =
+        std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(useClock_[0])).load(std::memory_order_relaxed);
+    std::atomic_ref<std::uint32_t> mark(const_cast<std::uint32_t&>(slotLastUse_[slot]));
+    if (mark.load(std::memory_order_relaxed) != now) mark.store(now, std::memory_order_relaxed);
   }
 
   std::size_t blockBytes() const { return std::size_t{kVoxelsPerChunk} * bytesPerWord_; }
@@ -157,6 +212,8 @@ private:
   std::vector<std::uint32_t> chunks_;
   std::vector<std::uint8_t> voxelBytes_;
   std::vector<std::uint8_t> chunkDistances_;
+  std::vector<std::uint32_t> slotLastUse_;  // paged: per slot, the tick of its last use
+  std::vector<std::uint32_t> useClock_;     // paged: [0] the use clock, the rest padding
 };
 
 }  // namespace voxhap

@@ -63,11 +63,13 @@ std::size_t expectResidentWordsMatch(const Voxmap& paged, const Voxmap& whole) {
   return missing;
 }
 
-/// A budget for `whole`'s tables (as voxel_cache.cpp counts them) and `slots` chunks of words.
+/// A budget for `whole`'s tables (as voxel_cache.cpp counts them) and `slots` chunks of words,
+/// each with its use mark.
 std::uint64_t budgetFor(const Voxmap& whole, std::uint64_t slots) {
   const std::uint64_t tables = (whole.hyperEntries().size() + 2 * whole.chunkEntries().size()) * 4 +
                                whole.hyperEntries().size() * kChunksPerHyper;
-  return tables + slots * kVoxelsPerChunk * static_cast<std::uint64_t>(whole.encoding().bytesPerWord());
+  return tables + slots * (kVoxelsPerChunk * static_cast<std::uint64_t>(whole.encoding().bytesPerWord()) +
+                           Voxmap::kSlotMarkBytes);
 }
 
 class Prefetch : public ::testing::Test {
@@ -222,6 +224,7 @@ TEST_F(Prefetch, ASuspensionLongerThanTwoSecondsStopsTheRun) {
   }
   EXPECT_TRUE(state.stopped);
   EXPECT_GT(state.suspensions.longestS, kMaxSuspensionS);
+  EXPECT_GT(m.paged.staticPager->readFailures(), 0u);  // each failed read gave its slot back
   const std::uint64_t frame = state.frame;
   step(m.paged, state, handles);
   EXPECT_EQ(state.frame, frame);  // a stopped run stays stopped
