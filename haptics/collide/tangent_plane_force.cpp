@@ -99,16 +99,12 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
                                        : glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +
                                              static_cast<double>(params.forceLayer - c.value) * s;
     out.contactPoints += beforeContact ? 0 : 1;
-    if (sink && !beforeContact && depth > sink->minDepthM) {
-      if (out.depthRows < sink->rows.size()) {
-        DepthRow& row = sink->rows[out.depthRows++];
-        row.pointWorld = apply(voxmapMotion.poseWorld, p);
-        row.intoVoxmapWorld = applyRotation(voxmapMotion.poseWorld, pushDirection);
-        row.depthM = depth;
-        row.floorM = sink->minDepthM;
-      } else {
-        out.depthRowsOverflowed = true;
-      }
+    if (sink && !beforeContact && depth > sink->minDepthM && out.depthRows < sink->rows.size()) {
+      DepthRow& row = sink->rows[out.depthRows++];
+      row.pointWorld = apply(voxmapMotion.poseWorld, p);
+      row.intoVoxmapWorld = applyRotation(voxmapMotion.poseWorld, pushDirection);
+      row.depthM = depth;
+      row.floorM = sink->minDepthM;
     }
     if (!beforeContact && depth <= 0.0) continue;
     const double approach = glm::dot(linear + glm::cross(angular, p), pushDirection);

@@ -81,7 +81,6 @@ struct PairWrench {
   std::uint32_t missingVoxels = 0;       ///< neighbour lookups of a paged voxmap that found it paged out
   glm::ivec3 firstMissingVoxel{0};       ///< the first of them
   std::uint32_t depthRows = 0;           ///< rows written to the DepthRowSink
-  bool depthRowsOverflowed = false;      ///< more contacts qualified than the sink had room for
 };
 
 /// Sums the tangent-plane forces of `contacts` (from samplePoints with the same

@@ -112,13 +112,14 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects, std::spa
                             double dtS) noexcept {
   DepthLimitFrame frame;
   frame.rows = static_cast<std::uint32_t>(rowCount);
+  for (Delta& d : s.deltas) d.refusedLinear = d.refusedAngular = glm::dvec3(0.0);
+  if (rowCount == 0) return frame;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     Delta& d = s.deltas[i];
     d.linear = after[i].comWorld - before[i].comWorld;
     d.angular = rotationVector(after[i].orientation * glm::conjugate(before[i].orientation));
     d.inverseMass = objects[i].body.inverseMassPerKg;
     d.inverseInertiaWorld = inverseInertiaWorld(objects[i].body, before[i].orientation);
-    d.refusedLinear = d.refusedAngular = glm::dvec3(0.0);
   }
   const std::size_t count = groupRows(s, rowCount, before);
   frame.pairs = static_cast<std::uint32_t>(count);
@@ -128,6 +129,11 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects, std::spa
     if (gainOf(l, s.deltas) > l.targetM + kToleranceOfLimit * l.limitM) ++frame.binding;
   }
   if (frame.binding == 0) return frame;
+  // what the integrator asked for; what is kept is taken off at the end
+  for (Delta& d : s.deltas) {
+    d.refusedLinear = d.linear;
+    d.refusedAngular = d.angular;
+  }
   for (int iteration = 0; iteration < kIterations; ++iteration) sweep(s, count);
 
   // what the sweeps left: the whole step scaled down until every limit holds
@@ -136,19 +142,16 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects, std::spa
     const Limit& l = s.limits[k];
     const double allowed = l.targetM + kResidualOfLimit * l.limitM;
     const double gain = gainOf(l, s.deltas);
-    frame.worstExcessM = std::max(frame.worstExcessM, gain - l.targetM);
     if (gain > allowed) scale = std::min(scale, allowed / gain);
   }
   frame.scale = scale;
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
     Delta& d = s.deltas[i];
-    const glm::dvec3 askedLinear = after[i].comWorld - before[i].comWorld;
-    const glm::dvec3 askedAngular = rotationVector(after[i].orientation * glm::conjugate(before[i].orientation));
     d.linear *= scale;
     d.angular *= scale;
-    d.refusedLinear = askedLinear - d.linear;
-    d.refusedAngular = askedAngular - d.angular;
+    d.refusedLinear -= d.linear;
+    d.refusedAngular -= d.angular;
     after[i].comWorld = before[i].comWorld + d.linear;
     after[i].orientation = glm::normalize(quatFromRotationVector(d.angular) * before[i].orientation);
     after[i].linearVelocityWorld -= d.refusedLinear / dtS;

@@ -68,7 +68,6 @@ struct DepthLimitFrame {
   std::uint32_t pairs = 0;    ///< pairs with rows
   std::uint32_t binding = 0;  ///< pairs whose limit the step would have passed
   double scale = 1.0;         ///< the last pass's scale of the whole step (1: none needed)
-  double worstExcessM = 0.0;  ///< the most a limit was passed after the sweeps, before the scale, m
 };
 
 /// Room for the projection, sized at load time (makeSimState).

@@ -330,8 +330,8 @@ void step(const SimModel& model, SimState& state, std::span<const HandleInput> h
     state.travelLimitedFrames += f.travelLimited ? 1 : 0;
   }
   state.depthLimit = limitDepths(model.objects, state.beforeStep, state.bodies, state.depthScratch, rowCount, model.dtS);
-  state.depthLimitedFrames += state.depthLimit.binding > 0 || state.depthLimit.scale < 1.0 ? 1 : 0;
-  for (std::size_t i = 0; i < n; ++i) {
+  state.depthLimitedFrames += state.depthLimit.binding > 0 ? 1 : 0;
+  for (std::size_t i = 0; i < n && state.depthLimit.binding > 0; ++i) {
     // what the limits refused is the contacts' push beyond their springs
     const DepthLimitScratch::Delta& refused = state.depthScratch.deltas[i];
     const RigidBodyModel& body = model.objects[i].body;
