@@ -15,6 +15,9 @@
 
 namespace voxhap::test {
 
+/// The translation to (x, y, z), m: where a test mesh is placed.
+inline glm::dmat4 at(double x, double y, double z) { return glm::translate(glm::dmat4(1.0), glm::dvec3(x, y, z)); }
+
 /// An object of one part built by `append(mesh)`.
 template <typename Append>
 SceneObject meshObject(const std::string& name, ObjectRole role, Append&& append) {

@@ -18,7 +18,7 @@ namespace {
 
 constexpr double kVoxelM = 0.001;
 
-glm::dmat4 at(double x, double y, double z) { return glm::translate(glm::dmat4(1.0), glm::dvec3(x, y, z)); }
+using test::at;
 
 /// A 20 × 20 × 10 mm voxmap box and a 6 × 6 × 4 mm pointshell box, both moving and
 /// turning, the small one posed with its bottom inside the big one's near layers.

@@ -35,7 +35,7 @@ constexpr double kBoundVoxels = 0.1;
 /// At rest: no point of any moving object faster than this, m/s.
 constexpr double kRestSpeedMPerS = 1e-3;
 
-glm::dmat4 at(double x, double y, double z) { return glm::translate(glm::dmat4(1.0), glm::dvec3(x, y, z)); }
+using test::at;
 
 /// A target pose of an object's local frame (relative to where the scene puts it) at time t.
 using HandleFn = std::function<Pose(double tS)>;

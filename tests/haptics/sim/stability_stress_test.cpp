@@ -50,7 +50,7 @@ constexpr double kDropM = 4.0 * kVoxel;
 /// Every point test against the environment due in a frame is done (deterministic runs).
 constexpr double kCapacityTests = 1e9;
 
-glm::dmat4 at(double x, double y, double z) { return glm::translate(glm::dmat4(1.0), glm::dvec3(x, y, z)); }
+using test::at;
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool finite(const glm::dquat& q) {
