@@ -18,8 +18,10 @@
 /// voxelBytes_ is a pool of slots that a pager thread fills from the cache file, and a
 /// mixed chunk's entry reads kUniform | kMissingWord until its words are resident; it
 /// then holds the index of its slot. word() returns kMissingWord for a chunk that is not
-/// resident; callers of a paged voxmap check for it. The pager publishes entries with
-/// release stores; lookups read them with acquire loads (plain loads on x86). A lookup that reads a resident chunk marks its slot with the use clock (a relaxed
+/// resident; callers of a paged voxmap check for it. Chunk entries are read with
+/// sequentially consistent loads (a plain load on x86, ldar on ARMv8: what an acquire
+/// load costs), which the pager's hand-over of slots relies on (voxel_pager.h says why).
+/// A lookup that reads a resident chunk marks its slot with the use clock (a relaxed
 /// load, compare and, once a tick, a relaxed store; no lock, no allocation), so that the
 /// pager takes back the least recently used slots. An unpaged voxmap skips the mark on
 /// one predictable branch.
@@ -135,7 +137,7 @@ public:
   struct PagedArrays {
     VoxelGrid grid;
     const std::uint32_t* hyper = nullptr;
-    std::uint32_t* chunks = nullptr;  ///< entries published with release stores
+    std::uint32_t* chunks = nullptr;  ///< entries: published with release, unpublished with seq_cst
     std::uint8_t* pool = nullptr;     ///< the slots, blockBytes each
     std::size_t blockBytes = 0;
     std::uint32_t* slotLastUse = nullptr;  ///< per slot, the use clock when a lookup last read it
@@ -156,9 +158,10 @@ public:
     void publish(std::size_t index, std::uint32_t slot) const {
       std::atomic_ref<std::uint32_t>(chunks[index]).store(slot, std::memory_order_release);
     }
-    /// Pager: entry `index` reads missing again.
+    /// Pager: entry `index` reads missing again. Sequentially consistent, to be ordered
+    /// before the pager's loads of reader epochs (voxel_pager.h).
     void unpublish(std::size_t index) const {
-      std::atomic_ref<std::uint32_t>(chunks[index]).store(kUniform | kMissingWord, std::memory_order_release);
+      std::atomic_ref<std::uint32_t>(chunks[index]).store(kUniform | kMissingWord, std::memory_order_seq_cst);
     }
     /// The use clock now, ticks.
     std::uint32_t clockNow() const {
@@ -191,8 +194,9 @@ private:
   static constexpr std::size_t kClockWords = 64 / sizeof(std::uint32_t);
 
   std::uint32_t chunkEntry_(std::size_t index) const {
-    // atomic_ref needs a non-const object; the entry is only read here
-    return std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(chunks_[index])).load(std::memory_order_acquire);
+    // atomic_ref needs a non-const object; the entry is only read here. seq_cst: the
+    // pager's grace period needs this load ordered after the reader's epoch store
+    return std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(chunks_[index])).load(std::memory_order_seq_cst);
   }
   /// Marks pool slot `slot` used now; the store only once a tick, so the line stays shared.
   void markUse_(std::uint32_t slot) const {
