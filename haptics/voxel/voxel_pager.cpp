@@ -147,7 +147,7 @@ bool VoxelPager::serve(const Box& box) {
         slot = freeSlot();
         if (slot == kNone) return false;
         // nothing reaches the slot now: it is free, or taken back after a grace period
-        if (!reader_->read(block, {arrays_.pool + std::size_t{slot} * blockBytes_, blockBytes_})) {
+        if (!reader_->read(block, {arrays_.pool + std::size_t{slot} * arrays_.slotStrideBytes, blockBytes_})) {
           freeSlots_.push_back(slot);  // the chunk stays missing; a later request tries again
           readFailures_.fetch_add(1, std::memory_order_relaxed);
           continue;

@@ -17,7 +17,9 @@
 /// Paged (voxel_pager.h, Voxmap::paged): when the voxel words do not fit a memory budget,
 /// voxelBytes_ is a pool of slots that a pager thread fills from the cache file, and a
 /// mixed chunk's entry reads kUniform | kMissingWord until its words are resident; it
-/// then holds the index of its slot. word() returns kMissingWord for a chunk that is not
+/// then holds the index of its slot. Every slot is followed by kPadBytes of padding, so
+/// that the 4-byte read of a slot's last word never touches the next slot, which the
+/// pager may be rewriting. word() returns kMissingWord for a chunk that is not
 /// resident; callers of a paged voxmap check for it. Chunk entries are read with
 /// sequentially consistent loads (a plain load on x86, ldar on ARMv8: what an acquire
 /// load costs), which the pager's hand-over of slots relies on (voxel_pager.h says why).
@@ -82,10 +84,9 @@ public:
                                                  chunkInHyper(ijkVoxel >> kChunkEdgeLog2));
     if (chunkEntry & kUniform) return chunkEntry & ~kUniform;
     if (!slotLastUse_.empty()) markUse_(chunkEntry);
-    const std::size_t at =
-        (std::size_t{chunkEntry} * kVoxelsPerChunk + voxelInChunk(ijkVoxel)) * bytesPerWord_;
+    const std::size_t at = std::size_t{chunkEntry} * blockStrideBytes_ + voxelInChunk(ijkVoxel) * bytesPerWord_;
     VoxelWord w;
-    std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // the pool is padded for this read
+    std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // each block, or the whole array, is padded for this read
     return w & wordMask_;
   }
 
@@ -113,24 +114,27 @@ public:
   /// The flat tree's arrays and the chunk-level field, for serialization; see above.
   std::span<const std::uint32_t> hyperEntries() const { return hyper_; }
   std::span<const std::uint32_t> chunkEntries() const { return chunks_; }
-  /// Packed words of the mixed chunks, without the read padding.
+  /// Packed words of the mixed chunks, without the read padding (of a paged voxmap: its
+  /// pool of padded slots, which is no such array).
   std::span<const std::uint8_t> voxelBytes() const {
     return {voxelBytes_.data(), voxelBytes_.size() - std::min(voxelBytes_.size(), kPadBytes)};
   }
   std::span<const std::uint8_t> chunkDistances() const { return chunkDistances_; }
 
-  /// Chunks stored voxel by voxel (the rest are uniform).
+  /// Chunks stored voxel by voxel (the rest are uniform); of a whole voxmap.
   std::size_t mixedChunkCount() const { return voxelBytes().size() / blockBytes(); }
   /// Bytes held by the tree's arrays and the chunk-level field.
   std::size_t memoryBytes() const {
     return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) + voxelBytes_.size() +
-           chunkDistances_.size();
+           chunkDistances_.size() + slotLastUse_.size() * sizeof(std::uint32_t);
   }
 
-  /// Bytes after the last block, so that a 4-byte read of the last word stays inside.
+  /// Bytes after the last block, so that a 4-byte read of the last word stays inside. A
+  /// paged voxmap pads every slot so: the read of a slot's last word must not touch the
+  /// next slot, which the pager may be rewriting.
   static constexpr std::size_t kPadBytes = sizeof(VoxelWord);
-  /// Bytes a paged voxmap spends per slot beside its words: the slot's use mark.
-  static constexpr std::size_t kSlotMarkBytes = sizeof(std::uint32_t);
+  /// Bytes a paged voxmap spends per slot beside its words: the slot's padding and its use mark.
+  static constexpr std::size_t kSlotOverheadBytes = kPadBytes + sizeof(std::uint32_t);
 
   /// The arrays a pager (voxel_pager.h) fills and reads: they live on the heap and stay
   /// where they are when the voxmap is moved. For an unpaged voxmap the use marks are null.
@@ -138,8 +142,9 @@ public:
     VoxelGrid grid;
     const std::uint32_t* hyper = nullptr;
     std::uint32_t* chunks = nullptr;  ///< entries: published with release, unpublished with seq_cst
-    std::uint8_t* pool = nullptr;     ///< the slots, blockBytes each
-    std::size_t blockBytes = 0;
+    std::uint8_t* pool = nullptr;     ///< the slots, slot s at pool + s · slotStrideBytes
+    std::size_t blockBytes = 0;       ///< bytes of a chunk's words
+    std::size_t slotStrideBytes = 0;  ///< bytes from one slot to the next (padded)
     std::uint32_t* slotLastUse = nullptr;  ///< per slot, the use clock when a lookup last read it
     std::size_t slotCount = 0;
     std::uint32_t* useClock = nullptr;     ///< the use clock, in ticks (voxel_pager.h)
@@ -184,6 +189,7 @@ public:
             chunks_.data(),
             voxelBytes_.data(),
             blockBytes(),
+            blockStrideBytes_,
             slotLastUse_.empty() ? nullptr : slotLastUse_.data(),
             slotLastUse_.size(),
             useClock_.empty() ? nullptr : useClock_.data()};
@@ -211,6 +217,7 @@ private:
   VoxelGrid grid_;
   VoxelEncoding encoding_;
   std::size_t bytesPerWord_ = 2;
+  std::size_t blockStrideBytes_ = 0;  // bytes from one block of words to the next
   VoxelWord wordMask_ = 0;
   std::vector<std::uint32_t> hyper_;
   std::vector<std::uint32_t> chunks_;
