@@ -26,7 +26,9 @@ VoxelPager::Reader& VoxelPager::Reader::operator=(Reader&& other) noexcept {
   return *this;
 }
 
-VoxelPager::Reader::~Reader() { release(); }
+VoxelPager::Reader::~Reader() {
+  release();
+}
 
 void VoxelPager::Reader::release() noexcept {
   if (!pager_) return;
@@ -37,9 +39,15 @@ void VoxelPager::Reader::release() noexcept {
   pager_ = nullptr;
 }
 
-void VoxelPager::Reader::enter() noexcept { pager_->enter(index_); }
-void VoxelPager::Reader::leave() noexcept { pager_->leave(index_); }
-void VoxelPager::Reader::quiescent() noexcept { pager_->enter(index_); }
+void VoxelPager::Reader::enter() noexcept {
+  pager_->enter(index_);
+}
+void VoxelPager::Reader::leave() noexcept {
+  pager_->leave(index_);
+}
+void VoxelPager::Reader::quiescent() noexcept {
+  pager_->enter(index_);
+}
 
 VoxelPager::VoxelPager(const Voxmap::PagedArrays& arrays, std::unique_ptr<BlockReader> reader,
                        std::vector<std::uint32_t> fileBlockOfEntry, std::size_t slotCount)
@@ -62,7 +70,8 @@ VoxelPager::VoxelPager(const Voxmap::PagedArrays& arrays, std::unique_ptr<BlockR
 }
 
 VoxelPager::VoxelPager(const Voxmap::PagedArrays& arrays, const std::filesystem::path& file,
-                       std::uint64_t wordsOffset, std::vector<std::uint32_t> fileBlockOfEntry, std::size_t slotCount)
+                       std::uint64_t wordsOffset, std::vector<std::uint32_t> fileBlockOfEntry,
+                       std::size_t slotCount)
     : VoxelPager(arrays, std::make_unique<FileBlockReader>(file, wordsOffset), std::move(fileBlockOfEntry),
                  slotCount) {}
 
@@ -89,7 +98,8 @@ void VoxelPager::beginFrame() noexcept {
 VoxelPager::Reader VoxelPager::addReader() {
   for (std::size_t i = kFrameReader + 1; i < kMaxReaders; ++i) {
     bool expected = false;
-    if (readers_[i].taken.compare_exchange_strong(expected, true, std::memory_order_acq_rel)) return {this, i};
+    if (readers_[i].taken.compare_exchange_strong(expected, true, std::memory_order_acq_rel))
+      return {this, i};
   }
   throw Error("a paged voxmap takes at most " + std::to_string(kMaxReaders - 1) +
               " reader threads beside the haptic thread");
@@ -147,7 +157,8 @@ bool VoxelPager::serve(const Box& box) {
         slot = freeSlot();
         if (slot == kNone) return false;
         // nothing reaches the slot now: it is free, or taken back after a grace period
-        if (!reader_->read(block, {arrays_.pool + std::size_t{slot} * arrays_.slotStrideBytes, blockBytes_})) {
+        if (!reader_->read(block,
+                           {arrays_.pool + std::size_t{slot} * arrays_.slotStrideBytes, blockBytes_})) {
           freeSlots_.push_back(slot);  // the chunk stays missing; a later request tries again
           readFailures_.fetch_add(1, std::memory_order_relaxed);
           continue;
@@ -189,12 +200,16 @@ void VoxelPager::takeBackLeastRecentlyUsed(std::vector<std::uint32_t>& taken) {
     if (slotEntry_[slot] == kNone) continue;
     // a mark read ahead of this thread's view of the clock counts as now
     const auto age = static_cast<std::int32_t>(now - arrays_.lastUse(slot));
-    if (age >= static_cast<std::int32_t>(kInUseTicks)) byAge_.emplace_back(static_cast<std::uint32_t>(age), slot);
+    if (age >= static_cast<std::int32_t>(kInUseTicks))
+      byAge_.emplace_back(static_cast<std::uint32_t>(age), slot);
   }
-  const std::size_t batch = std::min(byAge_.size(), std::max<std::size_t>(1, slotEntry_.size() / kTakeBackShare));
+  const std::size_t batch =
+      std::min(byAge_.size(), std::max<std::size_t>(1, slotEntry_.size() / kTakeBackShare));
   if (batch == 0) return;
   // oldest first; equal ages by slot, so that runs repeat
-  const auto older = [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; };
+  const auto older = [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  };
   std::partial_sort(byAge_.begin(), byAge_.begin() + static_cast<std::ptrdiff_t>(batch), byAge_.end(), older);
   for (std::size_t k = 0; k < batch; ++k) {
     const std::uint32_t slot = byAge_[k].second;

@@ -97,9 +97,13 @@ public:
   /// its place back on destruction, which must be outside a section.
   class Reader {
   public:
+    /// An empty handle (registered with no pager).
     Reader() = default;
+    /// Takes `other`'s place; `other` is left empty.
     Reader(Reader&& other) noexcept : pager_(std::exchange(other.pager_, nullptr)), index_(other.index_) {}
+    /// Gives this handle's place back (outside a section), then takes `other`'s.
     Reader& operator=(Reader&& other) noexcept;
+    /// Gives the place back; must be outside a section.
     ~Reader();
     Reader(const Reader&) = delete;
     Reader& operator=(const Reader&) = delete;
@@ -124,7 +128,9 @@ public:
   /// A read section of `reader` for the scope's lifetime.
   class ReadSection {
   public:
+    /// Enters `reader`'s section; `reader` must outlive the section.
     explicit ReadSection(Reader& reader) noexcept : reader_(reader) { reader_.enter(); }
+    /// Leaves it.
     ~ReadSection() { reader_.leave(); }
     ReadSection(const ReadSection&) = delete;
     ReadSection& operator=(const ReadSection&) = delete;
@@ -163,6 +169,7 @@ public:
   /// when kMaxReaders − 1 are registered already.
   Reader addReader();
 
+  /// Slots of the pool (chunks that can be resident at once).
   std::size_t slotCount() const noexcept { return slotEntry_.size(); }
   /// Blocks read into slots (each a chunk made resident).
   std::uint64_t blocksRead() const noexcept { return blocksRead_.load(std::memory_order_relaxed); }

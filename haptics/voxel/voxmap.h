@@ -84,9 +84,10 @@ public:
                                                  chunkInHyper(ijkVoxel >> kChunkEdgeLog2));
     if (chunkEntry & kUniform) return chunkEntry & ~kUniform;
     if (!slotLastUse_.empty()) markUse_(chunkEntry);
-    const std::size_t at = std::size_t{chunkEntry} * blockStrideBytes_ + voxelInChunk(ijkVoxel) * bytesPerWord_;
+    const std::size_t at =
+        std::size_t{chunkEntry} * blockStrideBytes_ + voxelInChunk(ijkVoxel) * bytesPerWord_;
     VoxelWord w;
-    std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // each block, or the whole array, is padded for this read
+    std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // padded for this read: each slot, or the end
     return w & wordMask_;
   }
 
@@ -125,8 +126,8 @@ public:
   std::size_t mixedChunkCount() const { return voxelBytes().size() / blockBytes(); }
   /// Bytes held by the tree's arrays and the chunk-level field.
   std::size_t memoryBytes() const {
-    return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) + voxelBytes_.size() +
-           chunkDistances_.size() + slotLastUse_.size() * sizeof(std::uint32_t);
+    return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) +
+           voxelBytes_.size() + chunkDistances_.size() + slotLastUse_.size() * sizeof(std::uint32_t);
   }
 
   /// Bytes after the last block, so that a 4-byte read of the last word stays inside. A
@@ -139,8 +140,8 @@ public:
   /// The arrays a pager (voxel_pager.h) fills and reads: they live on the heap and stay
   /// where they are when the voxmap is moved. For an unpaged voxmap the use marks are null.
   struct PagedArrays {
-    VoxelGrid grid;
-    const std::uint32_t* hyper = nullptr;
+    VoxelGrid grid;                        ///< the voxmap's grid
+    const std::uint32_t* hyper = nullptr;  ///< hyperchunk entries (never paged)
     std::uint32_t* chunks = nullptr;  ///< entries: published with release, unpublished with seq_cst
     std::uint8_t* pool = nullptr;     ///< the slots, slot s at pool + s · slotStrideBytes
     std::size_t blockBytes = 0;       ///< bytes of a chunk's words
@@ -183,6 +184,7 @@ public:
       std::atomic_ref<std::uint32_t>(slotLastUse[slot]).store(now, std::memory_order_relaxed);
     }
   };
+  /// The arrays a pager fills, for VoxelPager (its use marks null unless Voxmap::paged).
   PagedArrays pagedArrays() {
     return {grid_,
             hyper_.data(),
@@ -202,12 +204,13 @@ private:
   std::uint32_t chunkEntry_(std::size_t index) const {
     // atomic_ref needs a non-const object; the entry is only read here. seq_cst: the
     // pager's grace period needs this load ordered after the reader's epoch store
-    return std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(chunks_[index])).load(std::memory_order_seq_cst);
+    return std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(chunks_[index]))
+        .load(std::memory_order_seq_cst);
   }
   /// Marks pool slot `slot` used now; the store only once a tick, so the line stays shared.
   void markUse_(std::uint32_t slot) const {
-    const std::uint32_t now =
-        std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(useClock_[0])).load(std::memory_order_relaxed);
+    const std::uint32_t now = std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(useClock_[0]))
+                                  .load(std::memory_order_relaxed);
     std::atomic_ref<std::uint32_t> mark(const_cast<std::uint32_t&>(slotLastUse_[slot]));
     if (mark.load(std::memory_order_relaxed) != now) mark.store(now, std::memory_order_relaxed);
   }

@@ -30,7 +30,8 @@ std::vector<SceneObject> plateAndPost() {
   std::vector<SceneObject> objects;
   objects.push_back(test::plate());
   objects.push_back(test::meshObject("post", ObjectRole::Static, [](TriangleMesh& m) {
-    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.02, 0.02, 0.01)), glm::dvec3(0.004, 0.004, 0.01));
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.02, 0.02, 0.01)),
+              glm::dvec3(0.004, 0.004, 0.01));
   }));
   return objects;
 }
@@ -52,7 +53,8 @@ Voxmap wholeVoxmap(const std::vector<SceneObject>& objects) {
 class MemoryBlocks final : public BlockReader {
 public:
   explicit MemoryBlocks(const Voxmap& whole)
-      : words_(whole.voxelBytes()), blockBytes_(std::size_t{kVoxelsPerChunk} * whole.encoding().bytesPerWord()) {}
+      : words_(whole.voxelBytes()),
+        blockBytes_(std::size_t{kVoxelsPerChunk} * whole.encoding().bytesPerWord()) {}
 
   bool read(std::uint32_t block, std::span<std::uint8_t> into) noexcept override {
     reads.fetch_add(1, std::memory_order_relaxed);
@@ -100,7 +102,8 @@ PagedCopy pagedCopy(const Voxmap& whole, std::size_t slots) {
                               std::move(distances));
   auto blocks = std::make_unique<MemoryBlocks>(whole);
   copy.blocks = blocks.get();
-  copy.pager = std::make_unique<VoxelPager>(copy.voxmap.pagedArrays(), std::move(blocks), std::move(blockOfEntry), slots);
+  copy.pager = std::make_unique<VoxelPager>(copy.voxmap.pagedArrays(), std::move(blocks),
+                                            std::move(blockOfEntry), slots);
   return copy;
 }
 
@@ -201,7 +204,8 @@ TEST_F(VoxelPagerTest, ATruncatedCacheFileFailsTheReadAndKeepsTheSlot) {
   std::vector<const SceneObject*> pointers;
   for (const SceneObject& o : objects_) pointers.push_back(&o);
   const std::uint64_t words = whole_.voxelBytes().size();
-  BudgetedVoxmap paged = voxelizeWithinBudget(pointers, voxelOptions(), cache, whole_.memoryBytes() - words / 2);
+  BudgetedVoxmap paged =
+      voxelizeWithinBudget(pointers, voxelOptions(), cache, whole_.memoryBytes() - words / 2);
   ASSERT_TRUE(paged.pager);
   fs::path file;
   for (const auto& entry : fs::directory_iterator(cache.directory)) {
@@ -295,7 +299,8 @@ TEST_F(VoxelPagerTest, ReadersRacingThePagerReadTheWholeVoxmapsWordsOrMissing) {
         {
           VoxelPager::ReadSection section(reader);
           for (int k = 0; k < 64; ++k) {
-            check(voxelOf(mixed_[window.load(std::memory_order_relaxed) + inWindow(random)], voxel(random)), r);
+            check(voxelOf(mixed_[window.load(std::memory_order_relaxed) + inWindow(random)], voxel(random)),
+                  r);
           }
         }
         std::this_thread::sleep_for(std::chrono::microseconds(20));  // the machine has two cores
