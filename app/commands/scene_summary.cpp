@@ -108,7 +108,8 @@ nlohmann::ordered_json sceneSummaryJson(const Scene& scene) {
 void printSceneSummary(std::ostream& out, const Scene& scene, bool withParts) {
   out << "scene      " << scene.sourceName << "\n";
   out << "objects    " << scene.objects.size() << "\n";
-  if (!scene.groups.empty()) out << "groups     " << scene.groups.size() << " (--move a group: its objects as one)\n";
+  if (!scene.groups.empty())
+    out << "groups     " << scene.groups.size() << " (--move a group: its objects as one)\n";
   out << "triangles  " << scene.triangleCount() << " (static " << scene.triangleCount(ObjectRole::Static)
       << ", dynamic " << scene.triangleCount(ObjectRole::Dynamic) << ")\n";
   out << "extent     " << extentText(scene.bounds()) << " m\n\n";
@@ -125,22 +126,28 @@ void printSceneSummary(std::ostream& out, const Scene& scene, bool withParts) {
       char color[64];
       std::snprintf(color, sizeof color, "rgba(%.2f %.2f %.2f %.2f)", c.r, c.g, c.b, c.a);
       out << "  " << pad(part.name, 22) << pad(std::to_string(part.mesh.triangles.size()), 11) << color
-          << (part.topology.closed() ? "" : "  open") << (part.topology.consistentlyOriented() ? "" : "  misoriented")
-          << "\n";
+          << (part.topology.closed() ? "" : "  open")
+          << (part.topology.consistentlyOriented() ? "" : "  misoriented") << "\n";
     }
   }
   if (scene.groups.empty()) return;
-  out << "\n" << pad("group", 24) << pad("objects", 9) << pad("parts", 7) << pad("triangles", 11)
+  out << "\n"
+      << pad("group", 24) << pad("objects", 9) << pad("parts", 7) << pad("triangles", 11)
       << pad("extent (m)", 24) << "holds\n";
   for (const SceneGroup& group : scene.groups) {
     const GroupFigures f = groupFigures(scene, group);
     std::string members;
-    const std::size_t shown = withParts ? group.objects.size() : std::min(group.objects.size(), kMembersShown);
-    for (std::size_t k = 0; k < shown; ++k) members += (k > 0 ? ", " : "") + scene.objects[group.objects[k]].name;
-    if (shown < group.objects.size()) members += ", ... (" + std::to_string(group.objects.size() - shown) + " more)";
-    out << pad(group.name, 24) << pad(std::to_string(group.objects.size()), 9) << pad(std::to_string(f.parts), 7)
-        << pad(std::to_string(f.triangles), 11) << pad(extentText(f.bounds), 24) << members
-        << (groupMoveProblem(scene, group).empty() ? "" : "  (not movable: holds an object named by extras)") << "\n";
+    const std::size_t shown =
+        withParts ? group.objects.size() : std::min(group.objects.size(), kMembersShown);
+    for (std::size_t k = 0; k < shown; ++k)
+      members += (k > 0 ? ", " : "") + scene.objects[group.objects[k]].name;
+    if (shown < group.objects.size())
+      members += ", ... (" + std::to_string(group.objects.size() - shown) + " more)";
+    out << pad(group.name, 24) << pad(std::to_string(group.objects.size()), 9)
+        << pad(std::to_string(f.parts), 7) << pad(std::to_string(f.triangles), 11)
+        << pad(extentText(f.bounds), 24) << members
+        << (groupMoveProblem(scene, group).empty() ? "" : "  (not movable: holds an object named by extras)")
+        << "\n";
   }
 }
 

@@ -616,7 +616,8 @@ private:
     };
     auto warn = [&](std::size_t renamed, const std::string& names, const char* what) {
       if (renamed == 0) return;
-      scene_.warnings.push_back(file_ + ": " + std::to_string(renamed) + what + names + (renamed > 5 ? ", ..." : ""));
+      scene_.warnings.push_back(file_ + ": " + std::to_string(renamed) + what + names +
+                                (renamed > 5 ? ", ..." : ""));
     };
     std::size_t renamed = 0;
     std::string names;

@@ -7,7 +7,9 @@
 namespace voxhap {
 namespace {
 
-std::string quoted(const std::string& name) { return "'" + name + "'"; }
+std::string quoted(const std::string& name) {
+  return "'" + name + "'";
+}
 
 /// Members of a group named in a list of what can be moved, at most this many.
 constexpr std::size_t kMembersNamed = 4;
@@ -62,8 +64,8 @@ ObjectSelection selectObjects(const Scene& scene, std::span<const std::string> n
       if (!problem.empty()) throw Error(scene.sourceName + ": " + problem);
       held = group->objects;
     } else {
-      throw Error(scene.sourceName + ": no object or group named " + quoted(name) + " (" + movableNames(scene) +
-                  ")");
+      throw Error(scene.sourceName + ": no object or group named " + quoted(name) + " (" +
+                  movableNames(scene) + ")");
     }
     for (const std::size_t i : held) {
       if (heldBy[i] != names.size()) {

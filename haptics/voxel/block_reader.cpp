@@ -1,10 +1,10 @@
 #include "haptics/voxel/block_reader.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstring>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "haptics/core/error.h"
 

@@ -25,10 +25,13 @@ class FileBlockReader final : public BlockReader {
 public:
   /// Opens `file` read-only; throws voxhap::Error naming it when it cannot.
   FileBlockReader(const std::filesystem::path& file, std::uint64_t wordsOffset);
+  /// Closes the file.
   ~FileBlockReader() override;
   FileBlockReader(const FileBlockReader&) = delete;
   FileBlockReader& operator=(const FileBlockReader&) = delete;
 
+  /// Reads block `block` at wordsOffset + block · into.size(); false on an error or a file
+  /// that ends inside the block.
   bool read(std::uint32_t block, std::span<std::uint8_t> into) noexcept override;
 
 private:

@@ -240,11 +240,11 @@ std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& k
   if (!problem.empty()) throw CacheFileError("is corrupt (" + problem + ")");
 
   const std::size_t blockBytes = std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
-  if (budgetBytes < tableBytes + blockBytes + Voxmap::kSlotMarkBytes) {
+  if (budgetBytes < tableBytes + blockBytes + Voxmap::kSlotOverheadBytes) {
     throw Error("a voxel memory of " + std::to_string(budgetBytes) + " bytes cannot hold the voxmap's tables (" +
                 std::to_string(tableBytes) + " bytes) and one chunk of voxel words; allow more");
   }
-  const std::size_t slots = static_cast<std::size_t>((budgetBytes - tableBytes) / (blockBytes + Voxmap::kSlotMarkBytes));
+  const std::size_t slots = static_cast<std::size_t>((budgetBytes - tableBytes) / (blockBytes + Voxmap::kSlotOverheadBytes));
   std::vector<std::uint32_t> fileBlockOfEntry(chunks.size(), 0xFFFFFFFFu);
   for (std::size_t i = 0; i < chunks.size(); ++i) {
     if (chunks[i] & Voxmap::kUniform) continue;

@@ -17,6 +17,38 @@ constexpr std::size_t kTakeBackShare = 64;
 
 }  // namespace
 
+VoxelPager::Reader& VoxelPager::Reader::operator=(Reader&& other) noexcept {
+  if (this != &other) {
+    release();
+    pager_ = std::exchange(other.pager_, nullptr);
+    index_ = other.index_;
+  }
+  return *this;
+}
+
+VoxelPager::Reader::~Reader() {
+  release();
+}
+
+void VoxelPager::Reader::release() noexcept {
+  if (!pager_) return;
+  ReaderEpoch& r = pager_->readers_[index_];
+  assert(r.epoch.load(std::memory_order_relaxed) == 0 && "a Reader given back inside a read section");
+  r.epoch.store(0, std::memory_order_release);
+  r.taken.store(false, std::memory_order_release);
+  pager_ = nullptr;
+}
+
+void VoxelPager::Reader::enter() noexcept {
+  pager_->enter(index_);
+}
+void VoxelPager::Reader::leave() noexcept {
+  pager_->leave(index_);
+}
+void VoxelPager::Reader::quiescent() noexcept {
+  pager_->enter(index_);
+}
+
 VoxelPager::VoxelPager(const Voxmap::PagedArrays& arrays, std::unique_ptr<BlockReader> reader,
                        std::vector<std::uint32_t> fileBlockOfEntry, std::size_t slotCount)
     : arrays_(arrays),
@@ -31,13 +63,15 @@ VoxelPager::VoxelPager(const Voxmap::PagedArrays& arrays, std::unique_ptr<BlockR
   freeSlots_.reserve(slotCount);
   for (std::size_t s = slotCount; s-- > 0;) freeSlots_.push_back(static_cast<std::uint32_t>(s));
   byAge_.reserve(slotCount);
+  readers_[kFrameReader].taken.store(true, std::memory_order_relaxed);
   lastSeenClock_ = arrays_.clockNow();
   lastClockChange_ = std::chrono::steady_clock::now();
   thread_ = std::thread([this] { run(); });
 }
 
 VoxelPager::VoxelPager(const Voxmap::PagedArrays& arrays, const std::filesystem::path& file,
-                       std::uint64_t wordsOffset, std::vector<std::uint32_t> fileBlockOfEntry, std::size_t slotCount)
+                       std::uint64_t wordsOffset, std::vector<std::uint32_t> fileBlockOfEntry,
+                       std::size_t slotCount)
     : VoxelPager(arrays, std::make_unique<FileBlockReader>(file, wordsOffset), std::move(fileBlockOfEntry),
                  slotCount) {}
 
@@ -46,9 +80,29 @@ VoxelPager::~VoxelPager() {
   if (thread_.joinable()) thread_.join();
 }
 
+void VoxelPager::enter(std::size_t reader) noexcept {
+  // seq_cst store: ordered before this section's (seq_cst) entry loads, see the header
+  readers_[reader].epoch.store(epoch_.load(std::memory_order_seq_cst), std::memory_order_seq_cst);
+}
+
+void VoxelPager::leave(std::size_t reader) noexcept {
+  // release: every word this section read happens before the pager sees it outside
+  readers_[reader].epoch.store(0, std::memory_order_release);
+}
+
 void VoxelPager::beginFrame() noexcept {
-  frame_.fetch_add(1, std::memory_order_seq_cst);
+  enter(kFrameReader);  // over the previous frame's epoch: leave and enter in one store
   arrays_.tick();
+}
+
+VoxelPager::Reader VoxelPager::addReader() {
+  for (std::size_t i = kFrameReader + 1; i < kMaxReaders; ++i) {
+    bool expected = false;
+    if (readers_[i].taken.compare_exchange_strong(expected, true, std::memory_order_acq_rel))
+      return {this, i};
+  }
+  throw Error("a paged voxmap takes at most " + std::to_string(kMaxReaders - 1) +
+              " reader threads beside the haptic thread");
 }
 
 void VoxelPager::request(const glm::ivec3& loChunk, const glm::ivec3& hiChunk) noexcept {
@@ -67,7 +121,7 @@ void VoxelPager::makeResident(const glm::ivec3& loChunk, const glm::ivec3& hiChu
   request(loChunk, hiChunk);
   const std::uint64_t asked = ringHead_.load();
   while (ringTail_.load(std::memory_order_acquire) < asked) {
-    beginFrame();  // no frame reads the voxmap yet: slots taken back need no grace
+    beginFrame();  // no frame reads the voxmap yet: the grace of slots taken back is a frame
     std::this_thread::sleep_for(kIdle);
   }
 }
@@ -103,7 +157,8 @@ bool VoxelPager::serve(const Box& box) {
         slot = freeSlot();
         if (slot == kNone) return false;
         // nothing reaches the slot now: it is free, or taken back after a grace period
-        if (!reader_->read(block, {arrays_.pool + std::size_t{slot} * blockBytes_, blockBytes_})) {
+        if (!reader_->read(block,
+                           {arrays_.pool + std::size_t{slot} * arrays_.slotStrideBytes, blockBytes_})) {
           freeSlots_.push_back(slot);  // the chunk stays missing; a later request tries again
           readFailures_.fetch_add(1, std::memory_order_relaxed);
           continue;
@@ -128,7 +183,7 @@ std::uint32_t VoxelPager::freeSlot() {
       if (!taken.empty()) break;
       idleWhileWaiting();  // every slot in use: wait until some age
     }
-    if (!waitForFrames()) return kNone;
+    if (!waitForReaders()) return kNone;
     takenBack_.fetch_add(taken.size(), std::memory_order_relaxed);
     freeSlots_.insert(freeSlots_.end(), taken.begin(), taken.end());
   }
@@ -145,27 +200,36 @@ void VoxelPager::takeBackLeastRecentlyUsed(std::vector<std::uint32_t>& taken) {
     if (slotEntry_[slot] == kNone) continue;
     // a mark read ahead of this thread's view of the clock counts as now
     const auto age = static_cast<std::int32_t>(now - arrays_.lastUse(slot));
-    if (age >= static_cast<std::int32_t>(kInUseTicks)) byAge_.emplace_back(static_cast<std::uint32_t>(age), slot);
+    if (age >= static_cast<std::int32_t>(kInUseTicks))
+      byAge_.emplace_back(static_cast<std::uint32_t>(age), slot);
   }
-  const std::size_t batch = std::min(byAge_.size(), std::max<std::size_t>(1, slotEntry_.size() / kTakeBackShare));
+  const std::size_t batch =
+      std::min(byAge_.size(), std::max<std::size_t>(1, slotEntry_.size() / kTakeBackShare));
   if (batch == 0) return;
   // oldest first; equal ages by slot, so that runs repeat
-  const auto older = [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; };
+  const auto older = [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  };
   std::partial_sort(byAge_.begin(), byAge_.begin() + static_cast<std::ptrdiff_t>(batch), byAge_.end(), older);
   for (std::size_t k = 0; k < batch; ++k) {
     const std::uint32_t slot = byAge_[k].second;
-    arrays_.unpublish(slotEntry_[slot]);
+    arrays_.unpublish(slotEntry_[slot]);  // seq_cst: before the epoch bump and the loads
     slotOfEntry_[slotEntry_[slot]] = kNone;
     slotEntry_[slot] = kNone;
     taken.push_back(slot);
   }
 }
 
-bool VoxelPager::waitForFrames() {
-  const std::uint64_t unpublishedAt = frame_.load(std::memory_order_seq_cst);
-  while (frame_.load(std::memory_order_seq_cst) < unpublishedAt + 2) {
-    if (stop_.load(std::memory_order_relaxed)) return false;
-    idleWhileWaiting();
+bool VoxelPager::waitForReaders() {
+  const std::uint64_t target = epoch_.fetch_add(1, std::memory_order_seq_cst) + 1;
+  for (ReaderEpoch& reader : readers_) {
+    for (;;) {
+      // seq_cst: after the unpublish in the single total order (the header's case 3)
+      const std::uint64_t epoch = reader.epoch.load(std::memory_order_seq_cst);
+      if (epoch == 0 || epoch >= target) break;
+      if (stop_.load(std::memory_order_relaxed)) return false;
+      idleWhileWaiting();
+    }
   }
   return true;
 }

@@ -27,6 +27,7 @@ Voxmap::Voxmap(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::uint32_t
     : grid_(grid),
       encoding_(encoding),
       bytesPerWord_(static_cast<std::size_t>(encoding.bytesPerWord())),
+      blockStrideBytes_(std::size_t{kVoxelsPerChunk} * bytesPerWord_),
       wordMask_(encoding.bytesPerWord() == 4 ? 0xFFFFFFFFu : (1u << (8 * encoding.bytesPerWord())) - 1u),
       hyper_(std::move(hyper)),
       chunks_(std::move(chunks)),
@@ -39,9 +40,9 @@ Voxmap::Voxmap(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::uint32_t
 Voxmap Voxmap::paged(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::uint32_t> hyper,
                      std::vector<std::uint32_t> chunks, std::size_t slotCount,
                      std::vector<std::uint8_t> chunkDistances) {
-  const std::size_t blockBytes = std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
-  Voxmap v(grid, encoding, std::move(hyper), std::move(chunks), std::vector<std::uint8_t>(slotCount * blockBytes),
-           std::move(chunkDistances));
+  Voxmap v(grid, encoding, std::move(hyper), std::move(chunks), {}, std::move(chunkDistances));
+  v.blockStrideBytes_ = v.blockBytes() + kPadBytes;
+  v.voxelBytes_.assign(slotCount * v.blockStrideBytes_, 0);
   v.slotLastUse_.assign(slotCount, 0);
   v.useClock_.assign(kClockWords, 0);
   return v;

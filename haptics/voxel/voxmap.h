@@ -17,9 +17,13 @@
 /// Paged (voxel_pager.h, Voxmap::paged): when the voxel words do not fit a memory budget,
 /// voxelBytes_ is a pool of slots that a pager thread fills from the cache file, and a
 /// mixed chunk's entry reads kUniform | kMissingWord until its words are resident; it
-/// then holds the index of its slot. word() returns kMissingWord for a chunk that is not
-/// resident; callers of a paged voxmap check for it. The pager publishes entries with
-/// release stores; lookups read them with acquire loads (plain loads on x86). A lookup that reads a resident chunk marks its slot with the use clock (a relaxed
+/// then holds the index of its slot. Every slot is followed by kPadBytes of padding, so
+/// that the 4-byte read of a slot's last word never touches the next slot, which the
+/// pager may be rewriting. word() returns kMissingWord for a chunk that is not
+/// resident; callers of a paged voxmap check for it. Chunk entries are read with
+/// sequentially consistent loads (a plain load on x86, ldar on ARMv8: what an acquire
+/// load costs), which the pager's hand-over of slots relies on (voxel_pager.h says why).
+/// A lookup that reads a resident chunk marks its slot with the use clock (a relaxed
 /// load, compare and, once a tick, a relaxed store; no lock, no allocation), so that the
 /// pager takes back the least recently used slots. An unpaged voxmap skips the mark on
 /// one predictable branch.
@@ -81,9 +85,9 @@ public:
     if (chunkEntry & kUniform) return chunkEntry & ~kUniform;
     if (!slotLastUse_.empty()) markUse_(chunkEntry);
     const std::size_t at =
-        (std::size_t{chunkEntry} * kVoxelsPerChunk + voxelInChunk(ijkVoxel)) * bytesPerWord_;
+        std::size_t{chunkEntry} * blockStrideBytes_ + voxelInChunk(ijkVoxel) * bytesPerWord_;
     VoxelWord w;
-    std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // the pool is padded for this read
+    std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // padded for this read: each slot, or the end
     return w & wordMask_;
   }
 
@@ -111,33 +115,37 @@ public:
   /// The flat tree's arrays and the chunk-level field, for serialization; see above.
   std::span<const std::uint32_t> hyperEntries() const { return hyper_; }
   std::span<const std::uint32_t> chunkEntries() const { return chunks_; }
-  /// Packed words of the mixed chunks, without the read padding.
+  /// Packed words of the mixed chunks, without the read padding (of a paged voxmap: its
+  /// pool of padded slots, which is no such array).
   std::span<const std::uint8_t> voxelBytes() const {
     return {voxelBytes_.data(), voxelBytes_.size() - std::min(voxelBytes_.size(), kPadBytes)};
   }
   std::span<const std::uint8_t> chunkDistances() const { return chunkDistances_; }
 
-  /// Chunks stored voxel by voxel (the rest are uniform).
+  /// Chunks stored voxel by voxel (the rest are uniform); of a whole voxmap.
   std::size_t mixedChunkCount() const { return voxelBytes().size() / blockBytes(); }
   /// Bytes held by the tree's arrays and the chunk-level field.
   std::size_t memoryBytes() const {
-    return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) + voxelBytes_.size() +
-           chunkDistances_.size();
+    return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) +
+           voxelBytes_.size() + chunkDistances_.size() + slotLastUse_.size() * sizeof(std::uint32_t);
   }
 
-  /// Bytes after the last block, so that a 4-byte read of the last word stays inside.
+  /// Bytes after the last block, so that a 4-byte read of the last word stays inside. A
+  /// paged voxmap pads every slot so: the read of a slot's last word must not touch the
+  /// next slot, which the pager may be rewriting.
   static constexpr std::size_t kPadBytes = sizeof(VoxelWord);
-  /// Bytes a paged voxmap spends per slot beside its words: the slot's use mark.
-  static constexpr std::size_t kSlotMarkBytes = sizeof(std::uint32_t);
+  /// Bytes a paged voxmap spends per slot beside its words: the slot's padding and its use mark.
+  static constexpr std::size_t kSlotOverheadBytes = kPadBytes + sizeof(std::uint32_t);
 
   /// The arrays a pager (voxel_pager.h) fills and reads: they live on the heap and stay
   /// where they are when the voxmap is moved. For an unpaged voxmap the use marks are null.
   struct PagedArrays {
-    VoxelGrid grid;
-    const std::uint32_t* hyper = nullptr;
-    std::uint32_t* chunks = nullptr;  ///< entries published with release stores
-    std::uint8_t* pool = nullptr;     ///< the slots, blockBytes each
-    std::size_t blockBytes = 0;
+    VoxelGrid grid;                        ///< the voxmap's grid
+    const std::uint32_t* hyper = nullptr;  ///< hyperchunk entries (never paged)
+    std::uint32_t* chunks = nullptr;  ///< entries: published with release, unpublished with seq_cst
+    std::uint8_t* pool = nullptr;     ///< the slots, slot s at pool + s · slotStrideBytes
+    std::size_t blockBytes = 0;       ///< bytes of a chunk's words
+    std::size_t slotStrideBytes = 0;  ///< bytes from one slot to the next (padded)
     std::uint32_t* slotLastUse = nullptr;  ///< per slot, the use clock when a lookup last read it
     std::size_t slotCount = 0;
     std::uint32_t* useClock = nullptr;     ///< the use clock, in ticks (voxel_pager.h)
@@ -156,9 +164,10 @@ public:
     void publish(std::size_t index, std::uint32_t slot) const {
       std::atomic_ref<std::uint32_t>(chunks[index]).store(slot, std::memory_order_release);
     }
-    /// Pager: entry `index` reads missing again.
+    /// Pager: entry `index` reads missing again. Sequentially consistent, to be ordered
+    /// before the pager's loads of reader epochs (voxel_pager.h).
     void unpublish(std::size_t index) const {
-      std::atomic_ref<std::uint32_t>(chunks[index]).store(kUniform | kMissingWord, std::memory_order_release);
+      std::atomic_ref<std::uint32_t>(chunks[index]).store(kUniform | kMissingWord, std::memory_order_seq_cst);
     }
     /// The use clock now, ticks.
     std::uint32_t clockNow() const {
@@ -175,12 +184,14 @@ public:
       std::atomic_ref<std::uint32_t>(slotLastUse[slot]).store(now, std::memory_order_relaxed);
     }
   };
+  /// The arrays a pager fills, for VoxelPager (its use marks null unless Voxmap::paged).
   PagedArrays pagedArrays() {
     return {grid_,
             hyper_.data(),
             chunks_.data(),
             voxelBytes_.data(),
             blockBytes(),
+            blockStrideBytes_,
             slotLastUse_.empty() ? nullptr : slotLastUse_.data(),
             slotLastUse_.size(),
             useClock_.empty() ? nullptr : useClock_.data()};
@@ -191,13 +202,15 @@ private:
   static constexpr std::size_t kClockWords = 64 / sizeof(std::uint32_t);
 
   std::uint32_t chunkEntry_(std::size_t index) const {
-    // atomic_ref needs a non-const object; the entry is only read here
-    return std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(chunks_[index])).load(std::memory_order_acquire);
+    // atomic_ref needs a non-const object; the entry is only read here. seq_cst: the
+    // pager's grace period needs this load ordered after the reader's epoch store
+    return std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(chunks_[index]))
+        .load(std::memory_order_seq_cst);
   }
   /// Marks pool slot `slot` used now; the store only once a tick, so the line stays shared.
   void markUse_(std::uint32_t slot) const {
-    const std::uint32_t now =
-        std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(useClock_[0])).load(std::memory_order_relaxed);
+    const std::uint32_t now = std::atomic_ref<std::uint32_t>(const_cast<std::uint32_t&>(useClock_[0]))
+                                  .load(std::memory_order_relaxed);
     std::atomic_ref<std::uint32_t> mark(const_cast<std::uint32_t&>(slotLastUse_[slot]));
     if (mark.load(std::memory_order_relaxed) != now) mark.store(now, std::memory_order_relaxed);
   }
@@ -207,6 +220,7 @@ private:
   VoxelGrid grid_;
   VoxelEncoding encoding_;
   std::size_t bytesPerWord_ = 2;
+  std::size_t blockStrideBytes_ = 0;  // bytes from one block of words to the next
   VoxelWord wordMask_ = 0;
   std::vector<std::uint32_t> hyper_;
   std::vector<std::uint32_t> chunks_;

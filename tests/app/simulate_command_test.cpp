@@ -36,7 +36,9 @@ TEST_F(SimulateCommand, BallTurnsInItsSocketWritesTheTraceAndASummary) {
   std::ifstream trace(dir_ / "trace.csv");
   std::string header;
   std::getline(trace, header);
-  EXPECT_EQ(header, "frame,t_s,object,qw,qx,qy,qz,tx,ty,tz,fx,fy,fz,taux,tauy,tauz,contacts,tested,max_travel_m,compute_us");
+  EXPECT_EQ(header,
+            "frame,t_s,object,qw,qx,qy,qz,tx,ty,tz,fx,fy,fz,taux,tauy,tauz,contacts,tested,max_travel_m,"
+            "compute_us");
   int rows = 0;
   for (std::string line; std::getline(trace, line);) ++rows;
   EXPECT_EQ(rows, 50);
@@ -45,8 +47,9 @@ TEST_F(SimulateCommand, BallTurnsInItsSocketWritesTheTraceAndASummary) {
 TEST_F(SimulateCommand, AFixedCapacityRepeatsAndBruteForceTestsEveryPoint) {
   const std::string script = writeScript("0 1 0 0 0 0 0 0\n0.03 0.9998 0.02 0 0 0 0 0\n");
   auto run = [&](const std::string& mode) {
-    std::vector<std::string> args = {"simulate", asset("ball-and-socket.glb"), "--move", "ball", "--script", script,
-                                     "--voxel-size", "1mm", "--point-offset=-0.5mm", "--json", mode};
+    std::vector<std::string> args = {
+        "simulate", asset("ball-and-socket.glb"), "--move", "ball", "--script", script, "--voxel-size",
+        "1mm",      "--point-offset=-0.5mm",      "--json", mode};
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return nlohmann::json::parse(r.out);
@@ -57,8 +60,8 @@ TEST_F(SimulateCommand, AFixedCapacityRepeatsAndBruteForceTestsEveryPoint) {
   for (const char* key : {"missed_deadlines", "frames_over_budget", "mean_travel_scale", "mean_contacts"}) {
     EXPECT_TRUE(fixed.contains(key)) << key;
   }
-  const CliRun bad = voxhap({"simulate", asset("ball-and-socket.glb"), "--move", "ball", "--script", script,
-                             "--capacity", "0"});
+  const CliRun bad = voxhap(
+      {"simulate", asset("ball-and-socket.glb"), "--move", "ball", "--script", script, "--capacity", "0"});
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("capacity"), std::string::npos) << bad.err;
 }
@@ -114,7 +117,8 @@ TEST_F(SimulateCommand, GroupMistakesAreNamed) {
   EXPECT_NE(r.err.find("'piston' and 'pin' both hold object 'pin'"), std::string::npos) << r.err;
   r = voxhap({"simulate", file, "--move", "engine", "--script", script});
   EXPECT_EQ(r.exitCode, 1);
-  EXPECT_NE(r.err.find("objects: crown, pin, block; groups: piston (crown, pin)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("objects: crown, pin, block; groups: piston (crown, pin)"), std::string::npos)
+      << r.err;
 }
 
 TEST_F(SimulateCommand, BadVoxelSizeIsAUsageError) {

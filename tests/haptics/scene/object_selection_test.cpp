@@ -16,7 +16,9 @@ using test::GltfDoc;
 
 class SceneObjectSelection : public ::testing::Test {
 protected:
-  Scene load(const GltfDoc& doc) { return loadGltfScene(test::writeDoc(doc, dir_.path(), "piston", BufferStorage::Glb)); }
+  Scene load(const GltfDoc& doc) {
+    return loadGltfScene(test::writeDoc(doc, dir_.path(), "piston", BufferStorage::Glb));
+  }
 
   /// The message selectObjects throws for `names`, or "" when it picks them.
   std::string refusal(const Scene& scene, const std::vector<std::string>& names) {
@@ -31,7 +33,9 @@ protected:
   test::TempDir dir_;
 };
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 TEST_F(SceneObjectSelection, AGroupMergesItsObjectsIntoOneKeepingPartColours) {
   const Scene scene = load(test::pistonAssemblyDoc());
@@ -48,7 +52,8 @@ TEST_F(SceneObjectSelection, AGroupMergesItsObjectsIntoOneKeepingPartColours) {
   EXPECT_EQ(piston.parts[0].baseColor, glm::vec4(0.8f, 0.1f, 0.1f, 1.0f));
   EXPECT_EQ(piston.parts[1].name, "pin");
   EXPECT_EQ(piston.parts[1].baseColor, glm::vec4(0.1f, 0.2f, 0.9f, 1.0f));
-  EXPECT_EQ(piston.triangleCount(), scene.find("crown")->triangleCount() + scene.find("pin")->triangleCount());
+  EXPECT_EQ(piston.triangleCount(),
+            scene.find("crown")->triangleCount() + scene.find("pin")->triangleCount());
   ASSERT_EQ(s.rest.size(), 1u);
   EXPECT_EQ(s.rest[0], scene.find("block"));
 }
@@ -88,7 +93,8 @@ TEST_F(SceneObjectSelection, NamesThatHoldTheSameObjectAreRefused) {
 
 TEST_F(SceneObjectSelection, AGroupHoldingAnObjectNamedByExtrasIsRefused) {
   GltfDoc doc = test::pistonAssemblyDoc();
-  doc.node(doc.nodeNamed("crown"))["extras"] = test::voxhapExtras({{"object", "crown head"}, {"density", 2700}});
+  doc.node(doc.nodeNamed("crown"))["extras"] =
+      test::voxhapExtras({{"object", "crown head"}, {"density", 2700}});
   const Scene scene = load(doc);
   ASSERT_NE(scene.findGroup("piston"), nullptr);  // still a group of the file
 

@@ -64,12 +64,12 @@ std::size_t expectResidentWordsMatch(const Voxmap& paged, const Voxmap& whole) {
 }
 
 /// A budget for `whole`'s tables (as voxel_cache.cpp counts them) and `slots` chunks of words,
-/// each with its use mark.
+/// each with its padding and use mark.
 std::uint64_t budgetFor(const Voxmap& whole, std::uint64_t slots) {
   const std::uint64_t tables = (whole.hyperEntries().size() + 2 * whole.chunkEntries().size()) * 4 +
                                whole.hyperEntries().size() * kChunksPerHyper;
   return tables + slots * (kVoxelsPerChunk * static_cast<std::uint64_t>(whole.encoding().bytesPerWord()) +
-                           Voxmap::kSlotMarkBytes);
+                           Voxmap::kSlotOverheadBytes);
 }
 
 class Prefetch : public ::testing::Test {

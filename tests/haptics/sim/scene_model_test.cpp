@@ -15,13 +15,14 @@
 namespace voxhap {
 namespace {
 
-constexpr double kVoxel = 0.0005;  // m
+constexpr double kVoxel = 0.0005;     // m
 constexpr double kBlockTopZ = 0.010;  // m, pistonAssemblyDoc
 
 class SceneModelGroup : public ::testing::Test {
 protected:
   Scene pistonScene() const {
-    return loadGltfScene(test::writeDoc(test::pistonAssemblyDoc(), dir_.path(), "piston", test::BufferStorage::Glb));
+    return loadGltfScene(
+        test::writeDoc(test::pistonAssemblyDoc(), dir_.path(), "piston", test::BufferStorage::Glb));
   }
   test::TempDir dir_;
 };
@@ -30,7 +31,8 @@ protected:
 bool hasPointIn(const Pointshell& shell, const glm::dvec3& lo, const glm::dvec3& hi, double margin) {
   for (const glm::vec3& p : shell.positionsLocal) {
     const glm::dvec3 q(p);
-    if (glm::all(glm::greaterThanEqual(q, lo - margin)) && glm::all(glm::lessThanEqual(q, hi + margin))) return true;
+    if (glm::all(glm::greaterThanEqual(q, lo - margin)) && glm::all(glm::lessThanEqual(q, hi + margin)))
+      return true;
   }
   return false;
 }
@@ -59,8 +61,8 @@ TEST_F(SceneModelGroup, AGroupMovesAsOneObjectWithTheMassOfAllItsParts) {
   const MassProperties pinMass = computeMassProperties(pin, objectDensityKgPerM3(pin));
   EXPECT_NEAR(piston.body.massKg, crownMass.massKg + pinMass.massKg, 1e-12);
   EXPECT_NEAR(piston.body.massKg, kDefaultDensityKgPerM3 * (1e-6 + 6.4e-8), 1e-9);
-  const glm::dvec3 com =
-      (crownMass.massKg * crownMass.comLocal + pinMass.massKg * pinMass.comLocal) / (crownMass.massKg + pinMass.massKg);
+  const glm::dvec3 com = (crownMass.massKg * crownMass.comLocal + pinMass.massKg * pinMass.comLocal) /
+                         (crownMass.massKg + pinMass.massKg);
   EXPECT_LT(glm::length(piston.body.comLocal - com), 1e-9);
   // one pointshell over both parts
   EXPECT_TRUE(hasPointIn(piston.shell, {0.0, 0.0, 0.012}, {0.01, 0.01, 0.022}, kVoxel));

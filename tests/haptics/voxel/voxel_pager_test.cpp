@@ -1,5 +1,6 @@
-// The pager (paper §5.3): slots taken back by last use, and failed reads that keep their
-// slot. Ground truth: the whole voxmap.
+// The pager (paper §5.3): slots taken back by last use, failed reads that keep their
+// slot, reader epochs that hold a slot until every reader is done with it, and readers
+// racing the pager (run under the tsan preset too). Ground truth: the whole voxmap.
 #include "haptics/voxel/voxel_pager.h"
 
 #include <atomic>
@@ -29,7 +30,8 @@ std::vector<SceneObject> plateAndPost() {
   std::vector<SceneObject> objects;
   objects.push_back(test::plate());
   objects.push_back(test::meshObject("post", ObjectRole::Static, [](TriangleMesh& m) {
-    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.02, 0.02, 0.01)), glm::dvec3(0.004, 0.004, 0.01));
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.02, 0.02, 0.01)),
+              glm::dvec3(0.004, 0.004, 0.01));
   }));
   return objects;
 }
@@ -51,7 +53,8 @@ Voxmap wholeVoxmap(const std::vector<SceneObject>& objects) {
 class MemoryBlocks final : public BlockReader {
 public:
   explicit MemoryBlocks(const Voxmap& whole)
-      : words_(whole.voxelBytes()), blockBytes_(std::size_t{kVoxelsPerChunk} * whole.encoding().bytesPerWord()) {}
+      : words_(whole.voxelBytes()),
+        blockBytes_(std::size_t{kVoxelsPerChunk} * whole.encoding().bytesPerWord()) {}
 
   bool read(std::uint32_t block, std::span<std::uint8_t> into) noexcept override {
     reads.fetch_add(1, std::memory_order_relaxed);
@@ -99,7 +102,8 @@ PagedCopy pagedCopy(const Voxmap& whole, std::size_t slots) {
                               std::move(distances));
   auto blocks = std::make_unique<MemoryBlocks>(whole);
   copy.blocks = blocks.get();
-  copy.pager = std::make_unique<VoxelPager>(copy.voxmap.pagedArrays(), std::move(blocks), std::move(blockOfEntry), slots);
+  copy.pager = std::make_unique<VoxelPager>(copy.voxmap.pagedArrays(), std::move(blocks),
+                                            std::move(blockOfEntry), slots);
   return copy;
 }
 
@@ -200,7 +204,8 @@ TEST_F(VoxelPagerTest, ATruncatedCacheFileFailsTheReadAndKeepsTheSlot) {
   std::vector<const SceneObject*> pointers;
   for (const SceneObject& o : objects_) pointers.push_back(&o);
   const std::uint64_t words = whole_.voxelBytes().size();
-  BudgetedVoxmap paged = voxelizeWithinBudget(pointers, voxelOptions(), cache, whole_.memoryBytes() - words / 2);
+  BudgetedVoxmap paged =
+      voxelizeWithinBudget(pointers, voxelOptions(), cache, whole_.memoryBytes() - words / 2);
   ASSERT_TRUE(paged.pager);
   fs::path file;
   for (const auto& entry : fs::directory_iterator(cache.directory)) {
@@ -220,6 +225,112 @@ TEST_F(VoxelPagerTest, ATruncatedCacheFileFailsTheReadAndKeepsTheSlot) {
   paged.pager->makeResident(chunk, chunk);
   EXPECT_TRUE(resident(paged.voxmap, whole_, chunk));
   EXPECT_EQ(paged.pager->slotsTakenBack(), 0u);
+}
+
+TEST_F(VoxelPagerTest, ASlotIsRewrittenOnlyAfterEveryRegisteredReaderLeft) {
+  constexpr std::size_t kSlots = 4;
+  PagedCopy p = pagedCopy(whole_, kSlots);
+  for (std::size_t k = 0; k < kSlots; ++k) p.pager->makeResident(mixed_[k], mixed_[k]);
+  VoxelPager::Reader reader = p.pager->addReader();
+  reader.enter();  // a reader inside a section, on any thread, holds every slot it might read
+  p.pager->request(mixed_[kSlots], mixed_[kSlots]);
+  for (int frame = 0; frame < 200; ++frame) {
+    p.pager->beginFrame();
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  EXPECT_FALSE(resident(p.voxmap, whole_, mixed_[kSlots]));  // the pager waits for the reader
+  EXPECT_EQ(p.pager->slotsTakenBack(), 0u);
+  reader.leave();
+  bool arrived = false;
+  for (int frame = 0; frame < 5000 && !arrived; ++frame) {
+    p.pager->beginFrame();
+    arrived = resident(p.voxmap, whole_, mixed_[kSlots]);
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  EXPECT_TRUE(arrived);
+  EXPECT_EQ(p.pager->slotsTakenBack(), 1u);
+}
+
+TEST_F(VoxelPagerTest, ReadersAreBoundedAndTheirPlacesComeBack) {
+  PagedCopy p = pagedCopy(whole_, 4);
+  std::vector<VoxelPager::Reader> readers;
+  for (std::size_t k = 1; k < VoxelPager::kMaxReaders; ++k) readers.push_back(p.pager->addReader());
+  EXPECT_THROW(p.pager->addReader(), Error);
+  readers.pop_back();
+  VoxelPager::Reader again = p.pager->addReader();
+  {
+    VoxelPager::ReadSection section(again);
+    EXPECT_EQ(p.voxmap.word(voxelOf(mixed_[0], 0)), Voxmap::kMissingWord);  // nothing asked for yet
+  }
+}
+
+TEST_F(VoxelPagerTest, ReadersRacingThePagerReadTheWholeVoxmapsWordsOrMissing) {
+  constexpr std::size_t kSlots = 12;
+  constexpr std::size_t kWindow = 3;  // chunks in use at once, fewer than the slots
+  constexpr int kReaders = 3;
+  constexpr int kFrames = 3000;
+  ASSERT_GT(mixed_.size(), 4 * kSlots);
+  PagedCopy p = pagedCopy(whole_, kSlots);
+  p.blocks->slow = true;
+  // a window of chunks slides over the mixed chunks, as a moving object's reach does: the
+  // frame thread asks for it, every reader reads in it; slots change hands behind it
+  std::atomic<std::size_t> window{0};
+  std::atomic<bool> stop{false};
+  std::atomic<std::uint64_t> mismatches{0};
+  std::vector<std::uint64_t> matched(kReaders + 1, 0);
+  // false when the voxel's chunk is missing
+  auto check = [&](const glm::ivec3& v, int who) {
+    const VoxelWord w = p.voxmap.word(v);
+    if (w == Voxmap::kMissingWord) return false;
+    if (w == whole_.word(v)) {
+      ++matched[static_cast<std::size_t>(who)];
+    } else {
+      mismatches.fetch_add(1, std::memory_order_relaxed);
+    }
+    return true;
+  };
+  std::vector<std::thread> threads;
+  for (int r = 0; r < kReaders; ++r) {
+    threads.emplace_back([&, r, reader = p.pager->addReader()]() mutable {
+      std::mt19937 random(static_cast<std::uint32_t>(100 + r));
+      std::uniform_int_distribution<std::size_t> inWindow(0, kWindow - 1);
+      std::uniform_int_distribution<int> voxel(0, kVoxelsPerChunk - 1);
+      while (!stop.load(std::memory_order_relaxed)) {
+        {
+          VoxelPager::ReadSection section(reader);
+          for (int k = 0; k < 64; ++k) {
+            check(voxelOf(mixed_[window.load(std::memory_order_relaxed) + inWindow(random)], voxel(random)),
+                  r);
+          }
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(20));  // the machine has two cores
+      }
+    });
+  }
+  // the frame thread reads in the window and asks for what it misses, as the haptic
+  // thread does; the window moves on every fourth frame
+  const std::size_t positions = mixed_.size() - kWindow;
+  for (int frame = 0; frame < kFrames; ++frame) {
+    p.pager->beginFrame();
+    const std::size_t w = static_cast<std::size_t>(frame / 4) % positions;
+    window.store(w, std::memory_order_relaxed);
+    for (std::size_t k = 0; k < kWindow; ++k) {
+      bool missing = false;
+      for (int v = 0; v < kVoxelsPerChunk; v += 61) missing |= !check(voxelOf(mixed_[w + k], v), kReaders);
+      if (missing) p.pager->request(mixed_[w + k], mixed_[w + k]);
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  const glm::ivec3 last = mixed_[window.load() + kWindow - 1];
+  p.pager->makeResident(last, last);  // behind every request still queued
+  for (int v = 0; v < kVoxelsPerChunk; v += 7) EXPECT_TRUE(check(voxelOf(last, v), kReaders)) << v;
+  stop = true;
+  for (std::thread& t : threads) t.join();
+
+  EXPECT_EQ(mismatches.load(), 0u);
+  for (int r = 0; r <= kReaders; ++r) EXPECT_GT(matched[static_cast<std::size_t>(r)], 0u) << "reader " << r;
+  EXPECT_GT(p.pager->slotsTakenBack(), kSlots);  // slots changed hands under the readers
+  EXPECT_EQ(p.pager->readFailures(), 0u);
 }
 
 }  // namespace
