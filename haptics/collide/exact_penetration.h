@@ -50,6 +50,11 @@
 /// vertex facing a face or between two edges, so only vertex and edge probes (of both
 /// bodies) are measured for it: exact for a vertex facing a face, within half the probe
 /// spacing between edges. A clearance found below kClearanceResolutionM ends the search.
+/// Candidates are measured nearest first, each search no wider than the best so far, and
+/// a surface probed whole keeps each probe's last measured distance across measurements:
+/// less the most any probe can have moved since (rotation and translation of the pair's
+/// relative pose), it is a lower bound that spares the query when it cannot win (as the
+/// paper's point drifting, §5.2). That changes the work, never the answer.
 ///
 /// Threads: construction builds Embree scenes and probes (allocates, may throw
 /// voxhap::Error); measure() and inside() are for one thread at a time (they reuse
