@@ -15,8 +15,9 @@
 /// the other body in that body's frame (both directions): inside when a ray from it
 /// crosses some part of the other body an odd number of times (parity per part, so that
 /// overlapping parts are fine; three skewed rays vote, two decide); its depth is then its
-/// exact distance to the other body's surface (closest point). The measure's depth is the
-/// deepest probe's, in either direction.
+/// exact distance to the other body's surface (closest point over every part, so that
+/// inside overlapping parts a face buried in the other part counts). The measure's depth
+/// is the deepest probe's, in either direction.
 ///
 /// A body of at most kMaxPseudoNormalTriangles whose parts are all closed and
 /// consistently oriented answers without rays: a probe is inside the part of its nearest
@@ -105,7 +106,7 @@ struct PenetrationSample {
   std::uint64_t probes = 0;      ///< probes of both surfaces the measurement considered
   std::uint64_t nearProbes = 0;  ///< of which near enough to the other body to be looked at one by one
   std::uint64_t candidates = 0;  ///< of which took the exact inside test (pseudo-normal side or ray vote)
-  std::uint64_t inside = 0;      ///< probes found inside the other body (by the vote or an interior voxel)
+  std::uint64_t inside = 0;  ///< probes found inside the other body (by the exact test or an interior voxel)
   /// Least exact distance from a vertex or edge probe outside the other body to that
   /// body's surface, m, among the probes within the clearance range (infinite when there
   /// are none: the surfaces are further apart than about kClearanceVoxels voxels).
