@@ -37,7 +37,6 @@ struct ExactPairSample {
 /// The worst of a run of checks.
 struct ExactCheckSummary {
   std::uint64_t checks = 0;                 ///< frames measured
-  std::uint64_t clearanceChecks = 0;        ///< of which with the clearance
   std::uint64_t framesWithPenetration = 0;  ///< of which with some probe inside
   double maxDepthM = 0.0;                   ///< deepest probe over the run, m
   double maxDepthAtS = 0.0;                 ///< when, simulated s
@@ -48,13 +47,13 @@ struct ExactCheckSummary {
   double minClearanceAtS = 0.0;                                    ///< when, s
   std::uint64_t probes = 0;                                        ///< probes considered, over the run
   std::uint64_t nearProbes = 0;                                    ///< of which looked at one by one
-  std::uint64_t candidates = 0;                                    ///< of which voted on
+  std::uint64_t candidates = 0;                                    ///< of which took the exact inside test
   double wallS = 0.0;                                              ///< spent measuring, s
 
   /// Adds the pairs of frame `frame` at simulated time `timeS`.
   void add(const std::vector<ExactPairSample>& pairs,
            const std::vector<std::array<std::string, 2>>& pairNames, std::uint64_t frame, double timeS,
-           double wallSpentS, bool withClearance);
+           double wallSpentS);
 };
 
 /// `summary` as the `exact_penetration` object of `voxhap simulate --json`: every_frames,

@@ -32,9 +32,6 @@ inline constexpr double kExtractionPointSpacingM = 1.0e-3;
 /// Frames between two exact penetration measurements by default (the last frame is always
 /// measured).
 inline constexpr std::uint64_t kPenetrationEveryFrames = 1;
-/// The exact clearance is measured at every this many exact penetration measurements
-/// (and the last): near a wide parallel gap it costs twice the penetration.
-inline constexpr std::uint64_t kClearanceEveryChecks = 10;
 /// Frames between two checks of whether the actuator is clear of the gear.
 inline constexpr std::uint64_t kClearCheckEveryFrames = 100;
 

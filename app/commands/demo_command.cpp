@@ -66,7 +66,8 @@ int runDemo(const CommandContext& c) {
     const ExactCheckSummary& e = r.exact;
     j["max_penetration_m"] = e.maxDepthM;
     j["max_penetration_at_s"] = e.maxDepthAtS;
-    j["max_penetration_frame"] = e.maxDepthFrame;
+    j["max_penetration_frame"] =
+        e.maxDepthM > 0.0 ? nlohmann::ordered_json(e.maxDepthFrame) : nlohmann::ordered_json(nullptr);
     j["max_penetration_world_m"] = {e.maxDepthWorld.x, e.maxDepthWorld.y, e.maxDepthWorld.z};
     j["max_penetration_into"] =
         e.maxDepthM > 0.0 ? nlohmann::ordered_json(e.maxDepthInto) : nlohmann::ordered_json(nullptr);

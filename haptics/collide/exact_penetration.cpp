@@ -43,6 +43,22 @@ double distanceToBox(const glm::dvec3& p, const Bounds& b) {
   return glm::length(glm::max(below, above));
 }
 
+/// The most any point within `radiusM` of `centreLocal` moves from `before` to `after`, m.
+double displacementBound(const Pose& before, const Pose& after, const glm::dvec3& centreLocal,
+                         double radiusM) {
+  const glm::dquat turn = after.orientation * glm::conjugate(before.orientation);
+  const double angleRad = 2.0 * std::atan2(glm::length(glm::dvec3(turn.x, turn.y, turn.z)), std::abs(turn.w));
+  // |R1 x − R0 x| ≤ 2 sin(θ/2) |x| ≤ θ |x| about the centre
+  return glm::length(apply(after, centreLocal) - apply(before, centreLocal)) + angleRad * radiusM;
+}
+
+/// `m` as a float no larger.
+float floatBelow(double m) {
+  float f = static_cast<float>(m);
+  if (static_cast<double>(f) > m) f = std::nextafter(f, 0.0f);
+  return f;
+}
+
 /// What the filter says of one probe, in the target body's frame.
 enum class Verdict : std::uint8_t {
   Outside,  ///< outside and beyond the clearance range
@@ -62,7 +78,9 @@ struct ClearanceCandidate {
   double lowerBoundM;
   glm::dvec3 pointTarget;  ///< in the target body's frame
   std::uint8_t target;     ///< 0: A, 1: B
+  std::uint32_t probe;     ///< index of the probe in its side, when that side is probed whole (else kNoProbe)
 };
+constexpr std::uint32_t kNoProbe = 0xFFFFFFFFu;
 
 /// Which probes of a group need looking at one by one.
 struct Reach {
@@ -104,6 +122,17 @@ struct ExactSide {
   std::unique_ptr<PseudoNormals> normals;
   std::vector<Bounds> partBounds;  // per part, local frame
   std::unique_ptr<ProbeCells> probes;
+  // Drifting (as the paper's point drifting, §5.2), for a side probed whole: each probe's
+  // last measured distance to the other surface (a lower bound: rounded down, or the
+  // search radius that found nothing) and the side's drift when it was measured. The
+  // drift sums, over measurements, a bound on how far any probe moved relative to the
+  // other body; a probe's distance now is at least its last minus the drift since.
+  std::vector<float> lastDistanceM;
+  std::vector<double> lastDriftM;
+  double driftM = 0.0;
+  std::optional<Pose> lastToOther;
+  glm::dvec3 centreLocal{0.0};  // of a sphere holding every probe
+  double radiusM = 0.0;
   std::vector<RayCrossing> hits;
   std::vector<std::uint32_t> parts;
 };
@@ -152,6 +181,12 @@ struct ExactPenetration::Impl {
   double depthOf(const ExactSide& target, const glm::dvec3& pointTarget, double hintM) const;
   /// The least distance of the clearance candidates to their targets' surfaces, m.
   double leastClearance();
+  /// Adds probe `probe` of side `from` (at `pointTarget`), at least `lowerBoundM` from the
+  /// other side's surface, to the clearance candidates.
+  void addClearanceCandidate(std::size_t from, std::uint32_t probe, const glm::dvec3& pointTarget,
+                             double lowerBoundM);
+  /// Remembers that probe `probe` of side `from` is at least `distanceM` from the other surface.
+  void rememberDistance(std::size_t from, std::uint32_t probe, double distanceM);
   /// Probes of `blocks` of side `from` tested against the other side.
   void probeInto(std::size_t from, std::span<const ProbeBlock> blocks, const Pose& fromToTarget,
                  const Pose& fromToWorld, PenetrationSample& sample, bool keepSurvivors);
@@ -306,8 +341,7 @@ void ExactPenetration::Impl::probeInto(std::size_t from, std::span<const ProbeBl
           case Verdict::Outside:
             continue;
           case Verdict::Near:
-            if (onEdge && withClearance)
-              clearance.push_back({k.lowerBoundM, pointTarget, static_cast<std::uint8_t>(1 - from)});
+            if (onEdge && withClearance) addClearanceCandidate(from, i, pointTarget, k.lowerBoundM);
             continue;
           case Verdict::Inside:
             isInside = true;
@@ -318,8 +352,9 @@ void ExactPenetration::Impl::probeInto(std::size_t from, std::span<const ProbeBl
             if (!isInside && onEdge && withClearance) {
               if (knownDepthM >= 0.0 && knownDepthM <= target.clearanceCapM) {
                 knownClearanceM = std::min(knownClearanceM, knownDepthM);
+                rememberDistance(from, i, knownDepthM);
               } else {
-                clearance.push_back({0.0, pointTarget, static_cast<std::uint8_t>(1 - from)});
+                addClearanceCandidate(from, i, pointTarget, 0.0);
               }
             }
             break;
@@ -398,6 +433,17 @@ ExactPenetration::ExactPenetration(const ExactBody& a, const ExactBody& b, doubl
     double cellM = kCellSpacings * probeSpacingM;
     if (other.voxmap) cellM = std::clamp(2.0 * other.voxmap->grid().voxelSizeM, 2.0 * probeSpacingM, cellM);
     side.probes = std::make_unique<ProbeCells>(side.meshes, *side.scene, probeSpacingM, cellM, whole);
+    if (whole) {
+      side.lastDistanceM.assign(side.probes->probeCount(), 0.0f);
+      side.lastDriftM.assign(side.probes->probeCount(), 0.0);
+    }
+    // every probe lies on a triangle, so within the sphere around the vertices
+    side.centreLocal = 0.5 * (side.boundsLocal.min + side.boundsLocal.max);
+    for (const TriangleMesh* mesh : side.meshes) {
+      for (const glm::vec3& p : mesh->positionsWorld) {
+        side.radiusM = std::max(side.radiusM, glm::length(glm::dvec3(p) - side.centreLocal));
+      }
+    }
   }
 }
 
@@ -414,6 +460,12 @@ PenetrationSample ExactPenetration::measure(const Pose& aToWorld, const Pose& bT
   const Pose aToB = compose(inverse(bToWorld), aToWorld);
   const Pose bToA = compose(inverse(aToWorld), bToWorld);
   const Pose toOther[2] = {aToB, bToA};
+  for (std::size_t i = 0; i < 2; ++i) {
+    ExactSide& side = m.sides[i];
+    if (side.lastToOther)
+      side.driftM += displacementBound(*side.lastToOther, toOther[i], side.centreLocal, side.radiusM);
+    side.lastToOther = toOther[i];
+  }
 
   // the sides probed whole first; an on-demand side then probes the regions near the
   // cells of the other that were not culled
@@ -446,6 +498,26 @@ PenetrationSample ExactPenetration::measure(const Pose& aToWorld, const Pose& bT
   return sample;
 }
 
+void ExactPenetration::Impl::addClearanceCandidate(std::size_t from, std::uint32_t probe,
+                                                   const glm::dvec3& pointTarget, double lowerBoundM) {
+  const ExactSide& side = sides[from];
+  const auto target = static_cast<std::uint8_t>(1 - from);
+  if (!side.probes->whole()) {
+    clearance.push_back({lowerBoundM, pointTarget, target, kNoProbe});
+    return;
+  }
+  const double driftedM =
+      static_cast<double>(side.lastDistanceM[probe]) - (side.driftM - side.lastDriftM[probe]);
+  clearance.push_back({std::max(lowerBoundM, driftedM), pointTarget, target, probe});
+}
+
+void ExactPenetration::Impl::rememberDistance(std::size_t from, std::uint32_t probe, double distanceM) {
+  ExactSide& side = sides[from];
+  if (!side.probes->whole() || probe == kNoProbe) return;
+  side.lastDistanceM[probe] = floatBelow(distanceM);
+  side.lastDriftM[probe] = side.driftM;
+}
+
 double ExactPenetration::Impl::leastClearance() {
   // nearest candidates first (by buckets of their lower bounds, in the order they came
   // within a bucket), each query no wider than the best so far
@@ -470,10 +542,11 @@ double ExactPenetration::Impl::leastClearance() {
       const ClearanceCandidate& c = clearance[ordered[k]];
       if (c.lowerBoundM >= bestM || bestM <= kClearanceResolutionM) continue;
       const ExactSide& target = sides[c.target];
-      if (const auto nearest =
-              target.scene->closestPoint(c.pointTarget, std::min(bestM, target.clearanceCapM))) {
-        bestM = std::min(bestM, nearest->distanceM);
-      }
+      const double radiusM = std::min(bestM, target.clearanceCapM);
+      const auto nearest = target.scene->closestPoint(c.pointTarget, radiusM);
+      if (nearest) bestM = std::min(bestM, nearest->distanceM);
+      // nothing within the radius: at least that far
+      rememberDistance(1u - c.target, c.probe, nearest ? nearest->distanceM : radiusM);
     }
   }
   return bestM;

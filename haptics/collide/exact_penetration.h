@@ -15,8 +15,9 @@
 /// the other body in that body's frame (both directions): inside when a ray from it
 /// crosses some part of the other body an odd number of times (parity per part, so that
 /// overlapping parts are fine; three skewed rays vote, two decide); its depth is then its
-/// exact distance to the other body's surface (closest point). The measure's depth is the
-/// deepest probe's, in either direction.
+/// exact distance to the other body's surface (closest point over every part, so that
+/// inside overlapping parts a face buried in the other part counts). The measure's depth
+/// is the deepest probe's, in either direction.
 ///
 /// A body of at most kMaxPseudoNormalTriangles whose parts are all closed and
 /// consistently oriented answers without rays: a probe is inside the part of its nearest
@@ -50,6 +51,11 @@
 /// vertex facing a face or between two edges, so only vertex and edge probes (of both
 /// bodies) are measured for it: exact for a vertex facing a face, within half the probe
 /// spacing between edges. A clearance found below kClearanceResolutionM ends the search.
+/// Candidates are measured nearest first, each search no wider than the best so far, and
+/// a surface probed whole keeps each probe's last measured distance across measurements:
+/// less the most any probe can have moved since (rotation and translation of the pair's
+/// relative pose), it is a lower bound that spares the query when it cannot win (as the
+/// paper's point drifting, §5.2). That changes the work, never the answer.
 ///
 /// Threads: construction builds Embree scenes and probes (allocates, may throw
 /// voxhap::Error); measure() and inside() are for one thread at a time (they reuse
@@ -100,7 +106,7 @@ struct PenetrationSample {
   std::uint64_t probes = 0;      ///< probes of both surfaces the measurement considered
   std::uint64_t nearProbes = 0;  ///< of which near enough to the other body to be looked at one by one
   std::uint64_t candidates = 0;  ///< of which took the exact inside test (pseudo-normal side or ray vote)
-  std::uint64_t inside = 0;      ///< probes found inside the other body (by the vote or an interior voxel)
+  std::uint64_t inside = 0;  ///< probes found inside the other body (by the exact test or an interior voxel)
   /// Least exact distance from a vertex or edge probe outside the other body to that
   /// body's surface, m, among the probes within the clearance range (infinite when there
   /// are none: the surfaces are further apart than about kClearanceVoxels voxels).

@@ -172,6 +172,38 @@ TEST_F(SimulateCommand, CheckExactSeesAnEdgeCuttingIntoAFaceBetweenVertices) {
       << text.out;
 }
 
+TEST_F(SimulateCommand, CheckExactMeasuresEveryPairOfMovingObjects) {
+  // two moving objects over the plate, clear of it: a 20 mm cube and a post turned 45°
+  // about z whose vertical edge is 0.4 mm into the cube's +x face, its ends above and
+  // below the cube
+  Scene scene;
+  scene.sourceName = "pair";
+  scene.objects.push_back(plate());
+  const glm::dvec3 cubeCentre(0.0, 0.0, 0.030);
+  scene.objects.push_back(meshObject("cube", ObjectRole::Dynamic, [&](TriangleMesh& m) {
+    appendBox(m, glm::translate(glm::dmat4(1.0), cubeCentre), {0.01, 0.01, 0.01});
+  }));
+  scene.objects.push_back(meshObject("post", ObjectRole::Dynamic, [&](TriangleMesh& m) {
+    appendBox(m,
+              glm::translate(glm::dmat4(1.0),
+                             cubeCentre + glm::dvec3(0.01 - 0.0004 + 0.01 * std::sqrt(2.0), 0.0017, 0.0009)) *
+                  glm::rotate(glm::dmat4(1.0), glm::radians(45.0), glm::dvec3(0, 0, 1)),
+              {0.01, 0.01, 0.02});
+  }));
+  writeGlbFile(scene, dir_ / "pair.glb");
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n0.005 1 0 0 0 0 0 0\n");
+  const CliRun r =
+      voxhap({"simulate", (dir_ / "pair.glb").string(), "--move", "cube", "--move", "post", "--script",
+              script, "--voxel-size", "1mm", "--capacity", "100000", "--check-exact", "--json"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto exact = nlohmann::json::parse(r.out).at("exact_penetration");
+  EXPECT_EQ(exact.at("checks"), 6);
+  EXPECT_NEAR(exact.at("max_depth_m").get<double>(), 0.0004, 1e-6) << exact.dump(2);
+  EXPECT_EQ(exact.at("max_depth_frame"), 0);
+  EXPECT_EQ(exact.at("max_depth_into"), "post into cube");
+  EXPECT_NEAR(exact.at("max_depth_world_m")[0].get<double>(), 0.0096, 1e-6);
+}
+
 TEST_F(SimulateCommand, CheckExactEveryNFramesAndTheClearanceOfTheLiftedPeg) {
   // the peg starts 1 mm above the mouth of its hole and goes up: no penetration, the
   // clearance about that gap

@@ -253,6 +253,28 @@ TEST(ExactPenetration, InsideAnyOfOverlappingPartsIsInside) {
   }
 }
 
+TEST(ExactPenetration, MeasuringAgainGivesWhatAFreshMeasurementGives) {
+  // drifting keeps each probe's last distance for the next measurements: it may spare
+  // queries, never change the answer; the cube comes down towards the plate, turning
+  const Plate plate;
+  const SceneObject cube = box("cube", glm::dmat4(1.0), {0.01, 0.01, 0.01});
+  ExactPenetration reused(bodyOf(cube, nullptr), bodyOf(plate.object, &plate.voxmap), kSpacing);
+  for (int step = 0; step <= 12; ++step) {
+    SCOPED_TRACE(step);
+    const Pose pose{{0.0013, 0.0021, 0.0135 - 0.0003 * step}, about(2.0 * step, {1, 0.3, 0})};
+    ExactPenetration fresh(bodyOf(cube, nullptr), bodyOf(plate.object, &plate.voxmap), kSpacing);
+    const PenetrationSample expected = fresh.measure(pose, Pose{});
+    const PenetrationSample s = reused.measure(pose, Pose{}, step % 3 != 1);  // some without the clearance
+    EXPECT_EQ(s.depthM, expected.depthM);
+    EXPECT_EQ(s.inside, expected.inside);
+    if (step % 3 != 1) {
+      EXPECT_EQ(s.clearanceM, expected.clearanceM);
+    } else {
+      EXPECT_TRUE(std::isinf(s.clearanceM));
+    }
+  }
+}
+
 TEST(ExactPenetration, TheInsideVoteAndBadSpacing) {
   const Plate plate;
   const SceneObject cube = box("cube", glm::dmat4(1.0), {0.01, 0.01, 0.01});
