@@ -67,8 +67,8 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
   const ObjectSelection selection = selectObjects(scene, moving);  // an object, or a group merged
   const SceneObject* actuator = selection.picked[0];
 
-  const SimModel model =
-      buildSceneModel(scene, moving, options.model, console.progress(options.label + ": preparing voxels"));
+  BuiltScene built = buildScene(scene, moving, options.model, console.progress(options.label + ": preparing voxels"));
+  const SimModel& model = built.model;
   if (!model.staticVoxmap)
     throw Error(scene.sourceName + ": nothing static to extract " + options.moving + " from");
   const Voxmap& staticVoxmap = *model.staticVoxmap;
@@ -96,10 +96,11 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
 
   ScriptedDevice device(script, model.deviceLimits);
   HapticDevice* devices[] = {&device};
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model, std::move(built.staticPager));
+  const SimState& state = sim.state;
   bool clear = false;
   const auto framesStart = std::chrono::steady_clock::now();
-  runFrames(model, state, devices, frames, r.stats, console.progress(options.label + ": simulating"),
+  runFrames(sim, devices, frames, r.stats, console.progress(options.label + ": simulating"),
             [&](std::uint64_t f, double) {
               const bool last = f + 1 == frames;
               const Pose pose = objectPose(model, state, 0);
@@ -119,7 +120,6 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
   r.handleProgressM = path.progressOf(handleCentre);
   r.actuatorProgressM = path.progressOf(actuatorCentre);
   r.finalLagM = glm::length(handleCentre - actuatorCentre);
-  r.finalState = std::move(state);
   r.wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   return r;
 }

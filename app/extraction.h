@@ -52,7 +52,6 @@ struct ExtractionOptions {
 /// What one extraction run measured.
 struct ExtractionResult {
   FrameStats stats;
-  SimState finalState;                ///< the engine's counters (missed deadlines, …)
   std::uint64_t points = 0;           ///< the actuator's pointshell
   double durationS = 0.0;             ///< simulated, s
   double wallS = 0.0;                 ///< building the model (cache loads) and running the frames, s

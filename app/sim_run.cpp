@@ -93,15 +93,17 @@ double durationFromArgs(const ParsedArgs& args, double defaultS) {
   return seconds;
 }
 
-void FrameStats::add(const SimModel& model, const SimState& state, double computeUsOfFrame) {
+void FrameStats::add(const LocalSimulation& sim, double computeUsOfFrame) {
   computeUs.push_back(computeUsOfFrame);
-  framesOverBudget += computeUsOfFrame > model.dtS * 1e6 ? 1 : 0;
-  sumTested += state.coherent.tested;
-  sumDrifted += state.coherent.drifted;
-  sumChunkTests += state.coherent.chunkTests;
-  sumTravelScale += state.coherent.travelScale;
-  for (std::size_t i = 0; i < model.objects.size(); ++i) {
-    const ObjectFrame& o = state.last[i];
+  framesOverBudget += computeUsOfFrame > sim.model().dtS * 1e6 ? 1 : 0;
+  const CoherenceFrame& coherence = sim.outputs.coherence;
+  sumTested += coherence.tested;
+  sumDrifted += coherence.drifted;
+  sumChunkTests += coherence.chunkTests;
+  sumTravelScale += coherence.travelScale;
+  counters = sim.workspace.counters;
+  suspensions = sim.workspace.suspensions;
+  for (const ObjectFrame& o : sim.outputs.objects) {
     maxContacts = std::max(maxContacts, o.contacts);
     sumContacts += o.contacts;
     maxForceN = std::max(maxForceN, glm::length(o.contactForceWorld));
@@ -137,29 +139,24 @@ double FrameStats::computeMaxUs() const {
   return computeUs.empty() ? 0.0 : *std::max_element(computeUs.begin(), computeUs.end());
 }
 
-void runFrames(const SimModel& model, SimState& state, std::span<HapticDevice* const> devices,
-               std::uint64_t frames, FrameStats& stats, const ProgressFn& progress,
-               const AfterFrameFn& afterFrame) {
-  std::vector<HandleInput> handles(model.objects.size());
+void runFrames(LocalSimulation& sim, std::span<HapticDevice* const> devices, std::uint64_t frames,
+               FrameStats& stats, const ProgressFn& progress, const AfterFrameFn& afterFrame) {
   stats.computeUs.reserve(stats.computeUs.size() + frames);
   for (std::uint64_t f = 0; f < frames; ++f) {
-    if (state.stopped) {
-      throw Error("stopped at " + std::to_string(state.timeS) + " s: the voxels the frame needed were not read from "
-                  "the cache file within " + std::to_string(static_cast<int>(kMaxSuspensionS)) +
+    if (sim.stepWithDevices(devices) & kFrameStopped) {
+      throw Error("stopped at " + std::to_string(sim.state.timeS) + " s: the voxels the frame needed were not read "
+                  "from the cache file within " + std::to_string(static_cast<int>(kMaxSuspensionS)) +
                   " s (paper §5.3); allow more --voxel-memory or use a faster disk");
     }
-    const auto start = std::chrono::steady_clock::now();
-    stepWithDevices(model, state, devices, handles);
-    const double us =
-        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-    stats.add(model, state, us);
+    const double us = sim.lastStepS * 1e6;
+    stats.add(sim, us);
     if (afterFrame) afterFrame(f, us);
     if (progress && f % 100 == 0) progress(static_cast<double>(f) / static_cast<double>(frames));
   }
   if (progress) progress(1.0);
 }
 
-nlohmann::ordered_json frameStatsJson(const FrameStats& stats, const SimState& state) {
+nlohmann::ordered_json frameStatsJson(const FrameStats& stats) {
   return {{"frames", stats.frames()},
           {"max_contacts", stats.maxContacts},
           {"mean_contacts", stats.meanContacts()},
@@ -168,28 +165,31 @@ nlohmann::ordered_json frameStatsJson(const FrameStats& stats, const SimState& s
           {"mean_drifted", stats.meanDrifted()},
           {"mean_chunk_tests", stats.meanChunkTests()},
           {"mean_travel_scale", stats.meanTravelScale()},
-          {"missed_deadlines", state.missedDeadlines},
+          {"missed_deadlines", stats.counters.missedDeadlines},
           {"frames_over_budget", stats.framesOverBudget},
-          {"pairs_skipped", state.pairsSkipped},
-          {"suspensions", state.suspensions.count},
-          {"suspended_frames", state.suspensions.frames},
-          {"longest_suspension_s", state.suspensions.longestS},
-          {"travel_limited_frames", state.travelLimitedFrames},
+          {"pairs_skipped", stats.counters.pairsSkipped},
+          {"suspensions", stats.suspensions.count},
+          {"suspended_frames", stats.suspensions.frames},
+          {"longest_suspension_s", stats.suspensions.longestS},
+          {"travel_limited_frames", stats.counters.travelLimitedFrames},
+          {"depth_limited_frames", stats.counters.depthLimitedFrames},
           {"compute_us",
            {{"p50", stats.computePercentileUs(0.5)},
             {"p99", stats.computePercentileUs(0.99)},
             {"max", stats.computeMaxUs()}}}};
 }
 
-void printFrameStats(std::ostream& out, const FrameStats& stats, const SimState& state, bool coherence) {
+void printFrameStats(std::ostream& out, const FrameStats& stats, bool coherence) {
   out << "frames          " << stats.frames() << "\nmax contacts    " << stats.maxContacts
       << "\nmean contacts   " << stats.meanContacts() << "\nmax force       " << stats.maxForceN
       << " N\nmean tests      " << stats.meanTested() << " per frame ("
       << (coherence ? "time-critical" : "brute force") << "; " << stats.meanDrifted() << " of them drifting), "
       << stats.meanChunkTests() << " chunk tests\nMaxTravel       " << stats.meanTravelScale()
-      << " of its bound on average\nmissed deadlines " << state.missedDeadlines << "\nover 1 ms        "
-      << stats.framesOverBudget << " frames\nsuspensions     " << state.suspensions.count << " ("
-      << state.suspensions.frames << " frames, longest " << state.suspensions.longestS << " s)\ncompute         p50 " << stats.computePercentileUs(0.5)
+      << " of its bound on average\nmissed deadlines " << stats.counters.missedDeadlines << "\nover 1 ms        "
+      << stats.framesOverBudget << " frames\ndepth limited   " << stats.counters.depthLimitedFrames
+      << " frames\nsuspensions     " << stats.suspensions.count << " (" << stats.suspensions.frames
+      << " frames, longest " << stats.suspensions.longestS << " s)\ncompute         p50 "
+      << stats.computePercentileUs(0.5)
       << " us, p99 " << stats.computePercentileUs(0.99) << " us, max " << stats.computeMaxUs() << " us\n";
 }
 

@@ -12,7 +12,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 packages=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libtinygltf-dev nlohmann-json3-dev libembree-dev libopenmesh-dev
-  libglfw3-dev libgl-dev libhidapi-dev libusb-1.0-0-dev libpng-dev
+  libglfw3-dev libgl-dev libhidapi-dev libusb-1.0-0-dev libpng-dev libxxhash-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri
 )

@@ -36,7 +36,7 @@
 #include "haptics/geometry/mesh_builder.h"
 #include "haptics/scene/builtin/builtin_scenes.h"
 #include "haptics/sim/scene_model.h"
-#include "haptics/sim/simulation.h"
+#include "haptics/sim/local_simulation.h"
 #include "haptics/voxel/voxel_encoding.h"
 
 namespace voxhap::cli {
@@ -230,19 +230,19 @@ HandleInput rodHandleAt(double tS, double startGapM) {
 void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, double voxelM, int bits, bool aware,
                   bool coherent, BenchTable& table) {
   model.coherence.enabled = coherent;
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  const SimState& state = sim.state;
   std::vector<double> computeUs;
   computeUs.reserve(static_cast<std::size_t>(es.frames));
   HandleInput handles[1];
   for (int f = 0; f < es.frames; ++f) {
     if (es.held) handles[0] = rodHandleAt(state.timeS + model.dtS, kStartGapVoxels * voxelM);
-    const auto start = std::chrono::steady_clock::now();
-    step(model, state, handles);
-    computeUs.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+    sim.step(handles);
+    computeUs.push_back(sim.lastStepS * 1e6);
   }
   const SceneObject& moving = *scene.find(es.moving);
   const double gap = signedGapM(scene, moving, objectPose(model, state, 0));
-  const glm::dvec3 force = state.last[0].contactForceWorld;
+  const glm::dvec3 force = sim.object(0).contactForceWorld;
 
   const std::size_t r = table.addRow();
   table.set(r, "scene", std::string(es.name));
@@ -262,9 +262,9 @@ void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, dou
     const double cosine = std::clamp(force.z / glm::length(force), -1.0, 1.0);
     table.set(r, "force_angle_deg", std::acos(cosine) * 180.0 / std::numbers::pi);
   }
-  table.set(r, "contacts", static_cast<std::int64_t>(state.last[0].contacts));
+  table.set(r, "contacts", static_cast<std::int64_t>(sim.object(0).contacts));
   table.set(r, "speed_mps", glm::length(state.bodies[0].linearVelocityWorld));
-  table.set(r, "missed_deadlines", static_cast<std::int64_t>(state.missedDeadlines));
+  table.set(r, "missed_deadlines", static_cast<std::int64_t>(sim.workspace.counters.missedDeadlines));
 }
 
 template <typename T, typename Parse>

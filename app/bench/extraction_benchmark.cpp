@@ -101,7 +101,7 @@ BenchTable runExtractionBench(const BenchContext& c) {
     if (r.cameOut()) table.set(i, "completion_s", *r.completionS);
     table.set(i, "wall_s", r.wallS);
     table.set(i, "frames_over_budget", static_cast<std::int64_t>(r.stats.framesOverBudget));
-    table.set(i, "missed_deadlines", static_cast<std::int64_t>(r.finalState.missedDeadlines));
+    table.set(i, "missed_deadlines", static_cast<std::int64_t>(r.stats.counters.missedDeadlines));
     table.set(i, "compute_p50_us", r.stats.computePercentileUs(0.5));
     table.set(i, "compute_p99_us", r.stats.computePercentileUs(0.99));
     table.set(i, "compute_max_us", r.stats.computeMaxUs());

@@ -27,7 +27,7 @@
 #include "app/cli/number_format.h"
 #include "app/scene_source.h"
 #include "haptics/core/error.h"
-#include "haptics/sim/simulation.h"
+#include "haptics/sim/local_simulation.h"
 
 namespace voxhap::cli {
 namespace {
@@ -91,7 +91,8 @@ void measureRow(const Scene& scene, double voxelM, const BenchContext& c, const 
   // a handle turning at the limit's rate, kLeadRad ahead of the ball
   const double rateRadPerS = ball.maxTravelM / ball.shellRadiusM / model.dtS;
 
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  const SimState& state = sim.state;
   std::vector<double> computeUs;
   computeUs.reserve(giveUpFrames);
   double turnedRad = 0.0;
@@ -103,16 +104,15 @@ void measureRow(const Scene& scene, double voxelM, const BenchContext& c, const 
   while (turnedRad < 2.0 * std::numbers::pi && computeUs.size() < giveUpFrames) {
     handles[0] = handleAt(centre, turnedRad + kLeadRad, rateRadPerS);
     const glm::dquat before = state.bodies[0].orientation;
-    const auto start = std::chrono::steady_clock::now();
-    step(model, state, handles);
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    sim.step(handles);
+    const double us = sim.lastStepS * 1e6;
     computeUs.push_back(us);
     realTimeS += std::max(model.dtS, us * 1e-6);
     overBudget += us > model.dtS * 1e6 ? 1 : 0;
     turnedRad += rotationVector(state.bodies[0].orientation * glm::conjugate(before)).x;
-    sumContacts += state.last[0].contacts;
-    sumTested += state.coherent.tested;
-    sumScale += state.coherent.travelScale;
+    sumContacts += sim.object(0).contacts;
+    sumTested += sim.outputs.coherence.tested;
+    sumScale += sim.outputs.coherence.travelScale;
     if (progress && computeUs.size() % 100 == 0) progress(std::clamp(turnedRad / (2.0 * std::numbers::pi), 0.0, 1.0));
   }
   if (progress) progress(1.0);
@@ -124,7 +124,7 @@ void measureRow(const Scene& scene, double voxelM, const BenchContext& c, const 
   if (turnedRad >= 2.0 * std::numbers::pi) table.set(r, "rotation_s", realTimeS);
   table.set(r, "limit_s", limitFrames * model.dtS);
   table.set(r, "mean_contacts", sumContacts / frames);
-  table.set(r, "missed_deadlines", static_cast<std::int64_t>(state.missedDeadlines));
+  table.set(r, "missed_deadlines", static_cast<std::int64_t>(sim.workspace.counters.missedDeadlines));
   table.set(r, "frames", static_cast<std::int64_t>(computeUs.size()));
   table.set(r, "frames_over_budget", static_cast<std::int64_t>(overBudget));
   table.set(r, "mean_tested", sumTested / frames);

@@ -34,7 +34,7 @@
 #include "app/cli/number_format.h"
 #include "haptics/core/error.h"
 #include "haptics/sim/scene_model.h"
-#include "haptics/sim/simulation.h"
+#include "haptics/sim/local_simulation.h"
 
 namespace voxhap::cli {
 namespace {
@@ -136,11 +136,10 @@ HandleInput handleAt(double tS) {
   return input;
 }
 
-double microsecondsOfStep(const SimModel& model, SimState& state, const HandleInput& handle) {
+double microsecondsOfStep(LocalSimulation& sim, const HandleInput& handle) {
   const HandleInput handles[1] = {handle};
-  const auto start = std::chrono::steady_clock::now();
-  step(model, state, handles);
-  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  sim.step(handles);
+  return sim.lastStepS * 1e6;
 }
 
 void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVoxelM, double seconds, bool quick,
@@ -160,7 +159,8 @@ void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVox
 
   // coherent: the real thing
   const auto frames = static_cast<std::uint64_t>(std::llround(seconds / model.dtS));
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  const SimState& state = sim.state;
   std::vector<double> computeUs;
   computeUs.reserve(frames);
   double sumTested = 0.0, sumContacts = 0.0, sumScale = 0.0, sumTravel = 0.0;
@@ -168,17 +168,17 @@ void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVox
   std::uint64_t overBudget = 0;
   const ProgressFn progress = c.console.progress(label + ": coherent");
   for (std::uint64_t f = 0; f < frames; ++f) {
-    const double us = microsecondsOfStep(model, state, handleAt(state.timeS + model.dtS));
+    const double us = microsecondsOfStep(sim, handleAt(state.timeS + model.dtS));
     computeUs.push_back(us);
     overBudget += us > kBudgetUs ? 1 : 0;
-    sumTested += state.coherent.tested;
-    sumContacts += state.last[0].contacts;
-    maxContacts = std::max(maxContacts, state.last[0].contacts);
-    sumScale += state.coherent.travelScale;
-    sumTravel += state.last[0].maxTravelM;
+    sumTested += sim.outputs.coherence.tested;
+    sumContacts += sim.object(0).contacts;
+    maxContacts = std::max(maxContacts, sim.object(0).contacts);
+    sumScale += sim.outputs.coherence.travelScale;
+    sumTravel += sim.object(0).maxTravelM;
     if (progress && f % 100 == 0) progress(static_cast<double>(f) / static_cast<double>(frames));
   }
-  const std::uint64_t missed = state.missedDeadlines;
+  const std::uint64_t missed = sim.workspace.counters.missedDeadlines;
   const double coherentP50 = percentile(computeUs, 0.5);
 
   // brute force: every point every frame, from the same start
@@ -187,12 +187,12 @@ void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVox
   const std::uint64_t bruteFrames = std::clamp<std::uint64_t>(
       static_cast<std::uint64_t>(bruteTests / static_cast<double>(std::max<std::size_t>(points, 1))), kBruteMinFrames,
       std::min(kBruteMaxFrames, frames));
-  SimState brute = makeSimState(model);
+  LocalSimulation brute(model);
   std::vector<double> bruteUs;
   bruteUs.reserve(bruteFrames);
   const ProgressFn bruteProgress = c.console.progress(label + ": brute force");
   for (std::uint64_t f = 0; f < bruteFrames; ++f) {
-    bruteUs.push_back(microsecondsOfStep(model, brute, handleAt(brute.timeS + model.dtS)));
+    bruteUs.push_back(microsecondsOfStep(brute, handleAt(brute.state.timeS + model.dtS)));
     if (bruteProgress) bruteProgress(static_cast<double>(f) / static_cast<double>(bruteFrames));
   }
   const double bruteP50 = percentile(bruteUs, 0.5);

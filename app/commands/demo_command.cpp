@@ -60,7 +60,7 @@ int runDemo(const CommandContext& c) {
                                 {"coherence", options.model.sim.coherence.enabled},
                                 {"points", r.points},
                                 {"duration_s", r.durationS}};
-    const nlohmann::ordered_json frameSummary = frameStatsJson(stats, r.finalState);
+    const nlohmann::ordered_json frameSummary = frameStatsJson(stats);
     for (const auto& [key, value] : frameSummary.items()) j[key] = value;
     j["frames_within_1ms"] = deadlinesMet;
     const ExactCheckSummary& e = r.exact;
@@ -99,7 +99,7 @@ int runDemo(const CommandContext& c) {
         << mm(options.model.staticVoxelSizeM) << ", "
         << (options.model.sim.coherence.enabled ? "time-critical sampling" : "brute force")
         << ")\nscript           " << scriptFile << "\n";
-  printFrameStats(c.out, stats, r.finalState, options.model.sim.coherence.enabled);
+  printFrameStats(c.out, stats, options.model.sim.coherence.enabled);
   c.out << "within 1 ms      " << deadlinesMet << " of " << stats.frames() << " frames\n"
         << "max penetration  " << mm(r.exact.maxDepthM, 3) << " (exact, deepest surface probe";
   if (r.exact.maxDepthM > 0.0) {

@@ -13,7 +13,7 @@
 #include "app/sim_run.h"
 #include "haptics/core/error.h"
 #include "haptics/sim/scene_model.h"
-#include "haptics/sim/simulation.h"
+#include "haptics/sim/local_simulation.h"
 
 namespace voxhap::cli {
 namespace {
@@ -54,7 +54,8 @@ int runSimulate(const CommandContext& c) {
                                    ? parseLengthM(*c.args.value("probe-spacing"), "probe-spacing")
                                    : options.staticVoxelSizeM / kProbesPerVoxel;
   const Scene scene = loadScene(c.args.positionals[0], kDefaultSeed, c.console);
-  const SimModel model = buildSceneModel(scene, moving, options, c.console.progress("preparing voxels"));
+  BuiltScene built = buildScene(scene, moving, options, c.console.progress("preparing voxels"));
+  const SimModel& model = built.model;
   std::unique_ptr<ExactChecks> exact;
   if (exactEvery > 0) {
     exact = std::make_unique<ExactChecks>(scene, model, options, probeSpacingM,
@@ -75,14 +76,15 @@ int runSimulate(const CommandContext& c) {
 
   std::vector<HapticDevice*> deviceOf(model.objects.size(), nullptr);
   for (std::size_t i = 0; i < devices.size(); ++i) deviceOf[i] = devices[i].get();
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model, std::move(built.staticPager));
+  const SimState& state = sim.state;
   FrameStats stats;
   ExactCheckSummary exactSummary;
   const AfterFrameFn afterFrame = [&](std::uint64_t f, double us) {
     if (exact && (state.frame % exactEvery == 0 || f + 1 == frames)) exact->check(model, state, exactSummary);
     if (trace.is_open()) {
       for (std::size_t i = 0; i < model.objects.size(); ++i) {
-        const ObjectFrame& o = state.last[i];
+        const ObjectFrame& o = sim.object(i);
         const Pose pose = objectPose(model, state, i);
         trace << state.frame << ',' << state.timeS << ',' << model.objects[i].name << ',' << pose.orientation.w << ','
               << pose.orientation.x << ',' << pose.orientation.y << ',' << pose.orientation.z << ','
@@ -94,7 +96,7 @@ int runSimulate(const CommandContext& c) {
     }
   };
   if (exact) exact->check(model, state, exactSummary);  // the poses the scene file gives, frame 0
-  runFrames(model, state, deviceOf, frames, stats, c.console.progress("simulating"), afterFrame);
+  runFrames(sim, deviceOf, frames, stats, c.console.progress("simulating"), afterFrame);
   if (trace.is_open() && !trace.flush()) throw Error(*c.args.value("trace") + ": writing the trace failed");
 
   if (c.args.has("json")) {
@@ -103,7 +105,7 @@ int runSimulate(const CommandContext& c) {
                                      {"voxel_size_m", options.staticVoxelSizeM},
                                      {"point_spacing_m", options.pointSpacingM},
                                      {"coherence", options.sim.coherence.enabled}};
-    const nlohmann::ordered_json frameSummary = frameStatsJson(stats, state);
+    const nlohmann::ordered_json frameSummary = frameStatsJson(stats);
     for (const auto& [key, value] : frameSummary.items()) result[key] = value;
     if (exact) {
       result["exact_penetration"] =
@@ -111,7 +113,7 @@ int runSimulate(const CommandContext& c) {
     }
     c.out << result.dump(2) << "\n";
   } else {
-    printFrameStats(c.out, stats, state, options.sim.coherence.enabled);
+    printFrameStats(c.out, stats, options.sim.coherence.enabled);
     if (exact) printExactChecks(c.out, exactSummary, exactEvery, probeSpacingM, options.staticVoxelSizeM);
   }
   return kExitOk;

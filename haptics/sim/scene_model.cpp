@@ -16,8 +16,8 @@ Pointshell pointshellOf(const SceneObject& object, const PointshellOptions& opti
   return pointshellCached(objects, options, CacheOptions{{}, false}, progress).pointshell;
 }
 
-SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& movingNames,
-                         const SceneModelOptions& options, const ProgressFn& progress) {
+BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& movingNames,
+                      const SceneModelOptions& options, const ProgressFn& progress) {
   const ObjectSelection selection = selectObjects(scene, movingNames);
   const std::vector<const SceneObject*>& moving = selection.picked;
   const std::vector<const SceneObject*>& fixed = selection.rest;
@@ -65,9 +65,15 @@ SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& mov
     object.coupled = true;
     objects.push_back(std::move(object));
   }
-  SimModel model = makeSimModel(std::move(objects), std::move(staticVoxmap), options.sim);
-  model.staticPager = std::move(staticPager);  // the voxmap's arrays it fills moved with it
-  return model;
+  // the voxmap's arrays that the pager fills stay where they are when the voxmap moves
+  return {makeSimModel(std::move(objects), std::move(staticVoxmap), options.sim), std::move(staticPager)};
+}
+
+SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& movingNames,
+                         const SceneModelOptions& options, const ProgressFn& progress) {
+  BuiltScene built = buildScene(scene, movingNames, options, progress);
+  if (built.staticPager) throw Error("the static voxmap is paged: build the scene with buildScene");
+  return std::move(built.model);
 }
 
 }  // namespace voxhap

@@ -5,6 +5,7 @@
 /// voxhap::Error naming the object.
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "haptics/scene/scene.h"
 #include "haptics/sim/sim_model.h"
 #include "haptics/voxel/voxel_cache.h"
+#include "haptics/voxel/voxel_pager.h"
 #include "haptics/voxel/voxelizer.h"
 
 namespace voxhap {
@@ -48,10 +50,22 @@ struct SceneModelOptions {
       budgetedVoxelizeFn;
 };
 
+/// A scene built for simulation: its model, and the pager of its static voxmap when
+/// that is paged (for makeSimWorkspace; the model must outlive it).
+struct BuiltScene {
+  SimModel model;
+  std::shared_ptr<VoxelPager> staticPager;
+};
+
 /// The model of `scene` with `movingNames` moving (each coupled to a handle) and every
 /// other object static. A name is an object or a group, whose objects then move merged
 /// as one (object_selection.h). Throws voxhap::Error for a name that selectObjects refuses
 /// (unknown, repeated, overlapping another), or a moving object whose mesh is not closed.
+BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& movingNames,
+                      const SceneModelOptions& options, const ProgressFn& progress = {});
+
+/// As buildScene, for a static voxmap that is whole: throws voxhap::Error when
+/// options.budgetedVoxelizeFn paged it.
 SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& movingNames,
                          const SceneModelOptions& options, const ProgressFn& progress = {});
 

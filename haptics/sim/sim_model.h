@@ -5,11 +5,12 @@
 /// n(n−1)/2 among the n moving objects, plus each against the static environment).
 /// In a pair of moving objects the one with fewer points is the pointshell.
 ///
-/// Built once at load time (allocates, may throw voxhap::Error); read by step().
+/// Built once at load time (allocates, may throw voxhap::Error), then never changed:
+/// shared by every thread as std::shared_ptr<const SimModel>, read by step(). It holds
+/// no thread and no per-frame data (SimState, SimWorkspace).
 
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,7 +19,6 @@
 #include "haptics/dynamics/rigid_body.h"
 #include "haptics/dynamics/virtual_coupling.h"
 #include "haptics/pointshell/pointshell.h"
-#include "haptics/voxel/voxel_pager.h"
 #include "haptics/voxel/voxmap.h"
 
 namespace voxhap {
@@ -75,8 +75,9 @@ struct CoherenceOptions {
   /// Point tests per frame (n_cap of Eq. 2); 0: measured online from the real cost of
   /// each test and the frame's budget (the run is then not bit-reproducible).
   double capacityTests = 0.0;
-  /// Share of the frame period that point tests and forces may take when the capacity is
-  /// measured online; the rest is for dynamics, devices and the network.
+  /// Share of the frame period that step() may take when the capacity is measured online
+  /// (from the caller's timing of whole frames, FrameInputs::previousStepS); the rest is
+  /// for devices, the network and the jitter of the clock.
   double testBudgetFraction = 0.5;
   /// Point drifting (paper §5.2): tests of points far from contact skip the voxmap lookup
   /// while their drift since the last lookup leaves two queues of margin.
@@ -86,18 +87,21 @@ struct CoherenceOptions {
 struct SimModel {
   double dtS = 1e-3;                  ///< frame period, s
   glm::dvec3 gravityWorld{0.0};       ///< m/s²; zero: parts are held, not dropped
-  std::optional<Voxmap> staticVoxmap;  ///< world frame; none: nothing static collides
-  /// Pages the static voxmap's words when they exceed the voxel memory budget (paper
-  /// §5.3); null when it is whole.
-  std::shared_ptr<VoxelPager> staticPager;
+  /// World frame; none: nothing static collides. When paged (Voxmap::paged), its words
+  /// are the residency of a SimWorkspace, written by that workspace's pager alone.
+  std::optional<Voxmap> staticVoxmap;
   std::vector<MovingObjectModel> objects;
   std::vector<PairModel> pairs;
   DeviceLimits deviceLimits;
   CoherenceOptions coherence;
 
-  /// The pager of the pair's voxmap, or null when it is whole.
-  VoxelPager* pagerOf(const PairModel& pair) const {
-    return pair.voxmapObject == kStaticEnvironment ? staticPager.get() : nullptr;
+  /// Whether `value` is a force layer every pair's voxmap can render (1 … its largest value).
+  bool forceLayerInRange(std::uint8_t value) const noexcept {
+    if (value < 1) return false;
+    for (const PairModel& pair : pairs) {
+      if (value > voxmapOf(pair).encoding().maxValue()) return false;
+    }
+    return true;
   }
 
   const Voxmap& voxmapOf(const PairModel& pair) const {

@@ -184,6 +184,9 @@ public:
       std::atomic_ref<std::uint32_t>(slotLastUse[slot]).store(now, std::memory_order_relaxed);
     }
   };
+  /// Whether its words are a pool of slots that a pager fills (Voxmap::paged).
+  bool isPaged() const noexcept { return !slotLastUse_.empty(); }
+
   /// The arrays a pager fills, for VoxelPager (its use marks null unless Voxmap::paged).
   PagedArrays pagedArrays() {
     return {grid_,

@@ -11,7 +11,7 @@
 #include "haptics/geometry/mesh_builder.h"
 #include "haptics/scene/scene.h"
 #include "haptics/sim/scene_model.h"
-#include "haptics/sim/simulation.h"
+#include "haptics/sim/local_simulation.h"
 
 namespace voxhap::test {
 

@@ -109,16 +109,16 @@ TEST_P(CoherenceUnderRandomMotion, NoPointReachesTheForceLayerUntested) {
   for (const unsigned seed : {1u, 2u, 3u}) {
     ScriptedDevice device(randomMotion(seed, 0.05, 3.0, param.centre, param.turnRad));
     HapticDevice* devices[] = {&device};
-    HandleInput handles[1];
-    SimState state = makeSimState(model);
+    LocalSimulation sim(model);
+    SimState& state = sim.state;
     // per point, the travel allowed since it was first seen late in this run of contact
     // (−1: not late)
     std::vector<double> lateTravelM(model.objects[0].shell.size(), -1.0);
     for (int frame = 0; frame < kFrames; ++frame) {
       const std::vector<PointContact> expected = bruteForceContacts(model, state);
-      const std::uint64_t skippedBefore = state.pairsSkipped;
-      stepWithDevices(model, state, devices, handles);
-      const PointQueues& queues = state.coherence.front().queues();
+      const std::uint64_t skippedBefore = sim.workspace.counters.pairsSkipped;
+      sim.stepWithDevices(devices);
+      const PointQueues& queues = sim.workspace.coherence.front().queues();
       std::vector<double> stillLate(lateTravelM.size(), -1.0);  // a late run ends when the point leaves contact
       for (const PointContact& c : expected) {
         if (queues.queueOf(c.point) == 0) continue;
@@ -130,20 +130,20 @@ TEST_P(CoherenceUnderRandomMotion, NoPointReachesTheForceLayerUntested) {
         // without drifting the far queue, the furthest out, looks up within 6 voxels of
         // travel; with it a lookup waits for 4 voxels of drift, which a point circling
         // need never reach
-        stillLate[c.point] = std::max(0.0, lateTravelM[c.point]) + state.last[0].maxTravelM;
+        stillLate[c.point] = std::max(0.0, lateTravelM[c.point]) + sim.object(0).maxTravelM;
         if (!param.drifting) {
           ASSERT_LE(stillLate[c.point], 6.5 * kVoxel) << "seed " << seed << ", frame " << frame;
         }
       }
       lateTravelM.swap(stillLate);
-      const PointQueues& chunks = state.coherence.front().chunkQueues();
+      const PointQueues& chunks = sim.workspace.coherence.front().chunkQueues();
       collapsedChunkFrames += chunks.count(0) + chunks.count(1) < chunks.pointCount() ? 1 : 0;
-      outOfRangeFrames += state.pairsSkipped - skippedBefore;
-      missedFrames += state.coherent.deadlineMissed ? 1 : 0;
-      scaledFrames += state.coherent.travelScale < 1.0 ? 1 : 0;
+      outOfRangeFrames += sim.workspace.counters.pairsSkipped - skippedBefore;
+      missedFrames += sim.outputs.coherence.deadlineMissed ? 1 : 0;
+      scaledFrames += sim.outputs.coherence.travelScale < 1.0 ? 1 : 0;
       contactFrames += expected.empty() ? 0 : 1;
-      testedShare += state.coherent.tested / points;
-      driftedTests += state.coherent.drifted;
+      testedShare += sim.outputs.coherence.tested / points;
+      driftedTests += sim.outputs.coherence.drifted;
     }
   }
   RecordProperty("late_through_a_face", static_cast<int>(lateThroughAFace));
@@ -177,21 +177,21 @@ TEST(Coherence, MaxTravelHoldsEveryPointOfTheObject) {
   const SimModel model = coupledModel(scene, 200.0);
   ScriptedDevice device(randomMotion(4, 0.02, 1.0));
   HapticDevice* devices[] = {&device};
-  HandleInput handles[1];
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
   const Pointshell& shell = model.objects[0].shell;
   for (int frame = 0; frame < 1000; ++frame) {
     const Pose before = objectPose(model, state, 0);
-    stepWithDevices(model, state, devices, handles);
+    sim.stepWithDevices(devices);
     const Pose after = objectPose(model, state, 0);
     double farthestM = 0.0;
     for (const glm::vec3& p : shell.positionsLocal) {
       farthestM = std::max(farthestM, glm::length(apply(after, glm::dvec3(p)) - apply(before, glm::dvec3(p))));
     }
-    ASSERT_LE(farthestM, state.last[0].maxTravelM * (1.0 + 1e-9) + 1e-12) << "frame " << frame;
-    ASSERT_LE(state.last[0].maxTravelM, 0.5 * kVoxel);
+    ASSERT_LE(farthestM, sim.object(0).maxTravelM * (1.0 + 1e-9) + 1e-12) << "frame " << frame;
+    ASSERT_LE(sim.object(0).maxTravelM, 0.5 * kVoxel);
   }
-  EXPECT_GT(state.travelLimitedFrames, 100u);
+  EXPECT_GT(sim.workspace.counters.travelLimitedFrames, 100u);
 }
 
 TEST(Coherence, MoreMandatoryPointsThanCapacityStopsTheObjectOnceThenAbandonsTimeCriticality) {
@@ -201,26 +201,27 @@ TEST(Coherence, MoreMandatoryPointsThanCapacityStopsTheObjectOnceThenAbandonsTim
     appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, kRadius)), kRadius, 4);
   });
   const SimModel model = coupledModel(scene, 10.0);
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
   HandleInput handles[1] = {{Pose{glm::dvec3(0.0, 0.0, 0.005), identityQuat()}, {}}};
   const Pose start = objectPose(model, state, 0);
-  step(model, state, handles);
+  sim.step(handles);
   // the first frame short of capacity: every mandatory point tested, nothing moves
-  EXPECT_TRUE(state.coherent.deadlineMissed);
-  EXPECT_EQ(state.missedDeadlines, 1u);
-  EXPECT_EQ(state.last[0].maxTravelM, 0.0);
+  EXPECT_TRUE(sim.outputs.coherence.deadlineMissed);
+  EXPECT_EQ(sim.workspace.counters.missedDeadlines, 1u);
+  EXPECT_EQ(sim.object(0).maxTravelM, 0.0);
   EXPECT_EQ(objectPose(model, state, 0).position, start.position);
-  EXPECT_EQ(state.coherent.tested, state.coherent.mandatory);
-  EXPECT_GT(state.last[0].contacts, 0u);
+  EXPECT_EQ(sim.outputs.coherence.tested, sim.outputs.coherence.mandatory);
+  EXPECT_GT(sim.object(0).contacts, 0u);
   // the next ones still short: full MaxTravel, however long they take, counted missed
-  step(model, state, handles);
-  EXPECT_TRUE(state.coherent.deadlineMissed);
-  EXPECT_EQ(state.missedDeadlines, 2u);
-  EXPECT_EQ(state.last[0].maxTravelM, 0.5 * kVoxel);
-  for (int frame = 0; frame < 100; ++frame) step(model, state, handles);
+  sim.step(handles);
+  EXPECT_TRUE(sim.outputs.coherence.deadlineMissed);
+  EXPECT_EQ(sim.workspace.counters.missedDeadlines, 2u);
+  EXPECT_EQ(sim.object(0).maxTravelM, 0.5 * kVoxel);
+  for (int frame = 0; frame < 100; ++frame) sim.step(handles);
   // pulled free: no contact left, deadlines met again
-  EXPECT_FALSE(state.coherent.deadlineMissed);
-  EXPECT_EQ(state.last[0].contacts, 0u);
+  EXPECT_FALSE(sim.outputs.coherence.deadlineMissed);
+  EXPECT_EQ(sim.object(0).contacts, 0u);
   EXPECT_GT(objectPose(model, state, 0).position.z, start.position.z + 0.002);
 }
 
@@ -230,15 +231,15 @@ TEST(Coherence, AnObjectOutOfRangeCostsNoPointTests) {
     appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.2)), kRadius, 4);
   });
   const SimModel model = coupledModel(scene, 1000.0);
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
   HandleInput handles[1] = {{Pose{}, {}}};
   for (int frame = 0; frame < 10; ++frame) {
-    step(model, state, handles);
-    EXPECT_EQ(state.coherent.tested, 0u);
+    sim.step(handles);
+    EXPECT_EQ(sim.outputs.coherence.tested, 0u);
     // far from everything MaxTravel rises to half a chunk (8 voxels)
-    EXPECT_EQ(state.last[0].maxTravelM, 4.0 * kVoxel);
+    EXPECT_EQ(sim.object(0).maxTravelM, 4.0 * kVoxel);
   }
-  EXPECT_EQ(state.pairsSkipped, 10u);
+  EXPECT_EQ(sim.workspace.counters.pairsSkipped, 10u);
 }
 
 TEST(Coherence, FarInRangeTheChunksCollapseAndMaxTravelRisesUntilTheyComeBack) {
@@ -251,8 +252,9 @@ TEST(Coherence, FarInRangeTheChunksCollapseAndMaxTravelRisesUntilTheyComeBack) {
     appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.05)), kRadius, 4);
   });
   const SimModel model = coupledModel(scene, 1e6);
-  SimState state = makeSimState(model);
-  const PairCoherence& coherence = state.coherence.front();
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
+  const PairCoherence& coherence = sim.workspace.coherence.front();
   EXPECT_TRUE(coherence.onlyCollapsed());
   // the handle takes the ball down onto the plate, 40 mm in 0.2 s, and holds it there
   const std::vector<MotionKeyframe> keys = {{0.0, Pose{}},
@@ -260,23 +262,22 @@ TEST(Coherence, FarInRangeTheChunksCollapseAndMaxTravelRisesUntilTheyComeBack) {
                                             {0.5, Pose{glm::dvec3(0.0, 0.0, -0.0405), identityQuat()}}};
   ScriptedDevice device(MotionScript(keys, "down"));
   HapticDevice* devices[] = {&device};
-  HandleInput handles[1];
   std::uint32_t farFrames = 0;
   std::uint32_t contactFrames = 0;
   for (int frame = 0; frame < 500; ++frame) {
     const std::size_t expected = bruteForceContacts(model, state).size();
     const bool far = coherence.onlyCollapsed();
-    stepWithDevices(model, state, devices, handles);
-    ASSERT_EQ(state.last[0].contacts, expected) << "frame " << frame;
+    sim.stepWithDevices(devices);
+    ASSERT_EQ(sim.object(0).contacts, expected) << "frame " << frame;
     if (far) {
       ++farFrames;
-      EXPECT_EQ(state.last[0].maxTravelM, 4.0 * kVoxel);
+      EXPECT_EQ(sim.object(0).maxTravelM, 4.0 * kVoxel);
       // no point tests unless a chunk came back in this frame
       if (coherence.onlyCollapsed()) {
-        EXPECT_EQ(state.coherent.tested, 0u);
+        EXPECT_EQ(sim.outputs.coherence.tested, 0u);
       }
     } else {
-      EXPECT_EQ(state.last[0].maxTravelM, 0.5 * kVoxel);
+      EXPECT_EQ(sim.object(0).maxTravelM, 0.5 * kVoxel);
     }
     contactFrames += expected > 0 ? 1 : 0;
   }
@@ -291,9 +292,9 @@ TEST(Coherence, SameInputsGiveTheSameBitsWithAFixedCapacity) {
   for (RigidBodyState& result : end) {
     ScriptedDevice device(randomMotion(5, 0.05, 0.5));
     HapticDevice* devices[] = {&device};
-    HandleInput handles[1];
-    SimState state = makeSimState(model);
-    for (int frame = 0; frame < 500; ++frame) stepWithDevices(model, state, devices, handles);
+    LocalSimulation sim(model);
+    SimState& state = sim.state;
+    for (int frame = 0; frame < 500; ++frame) sim.stepWithDevices(devices);
     result = state.bodies[0];
   }
   EXPECT_EQ(std::memcmp(&end[0], &end[1], sizeof(RigidBodyState)), 0);

@@ -53,18 +53,17 @@ TEST(FrameAllocation, SteppingTwoCoupledObjectsInContactAllocatesNothing) {
   ScriptedDevice da(script);
   ScriptedDevice db(script);
   HapticDevice* devices[] = {&da, &db};
-  HandleInput handles[2];
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
   // the counter sees allocations
   countingAllocations = true;
   delete new int(1);
   countingAllocations = false;
   ASSERT_EQ(allocations.exchange(0), 1);
   countingAllocations = true;
-  for (int i = 0; i < 200; ++i) stepWithDevices(model, state, devices, handles);
+  for (int i = 0; i < 200; ++i) sim.stepWithDevices(devices);
   countingAllocations = false;
   EXPECT_EQ(allocations.load(), 0);
-  EXPECT_GT(state.last[0].contacts + state.last[1].contacts, 0u) << "the frames tested no contact";
+  EXPECT_GT(sim.object(0).contacts + sim.object(1).contacts, 0u) << "the frames tested no contact";
 }
 
 }  // namespace

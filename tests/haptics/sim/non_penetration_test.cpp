@@ -85,7 +85,8 @@ Outcome run(const std::string& name, const Case& c) {
   options.pointSpacingM = c.voxelM;
   options.pointDisplacementM = c.pointOffsetM;
   const SimModel model = buildSceneModel(c.scene, c.moving, options);
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
   cli::ExactChecks exact(c.scene, model, options, c.voxelM / kProbesPerVoxel);
   // the deepest probe of any pair, and whose surface it is
   auto deepest = [&](std::string& where) {
@@ -110,7 +111,7 @@ Outcome run(const std::string& name, const Case& c) {
     for (std::size_t i = 0; i < handles.size(); ++i) handles[i] = {c.handles[i](t), {}};
     {
       const test::FloatingPointTraps traps;
-      step(model, state, handles);
+      sim.step(handles);
     }
     if (frame % kCheckEvery == 0 || frame + 1 == c.frames) {
       const double depthM = deepest(where);
@@ -125,8 +126,10 @@ Outcome run(const std::string& name, const Case& c) {
       out.restFrame = frame;
     }
   }
-  for (const ObjectFrame& f : state.last) out.feltForceN = std::max(out.feltForceN, glm::length(f.feedback.forceWorld));
-  out.limitedFrames = state.depthLimitedFrames;
+  for (const ObjectFrame& f : sim.outputs.objects) {
+    out.feltForceN = std::max(out.feltForceN, glm::length(f.feedback.forceWorld));
+  }
+  out.limitedFrames = sim.workspace.counters.depthLimitedFrames;
   std::printf("[ figures  ] %-40s voxel %.2f mm: exact depth %.4f mm (%.3f voxel)%s%s, felt %.2f N, rest at frame %d, "
               "limited %llu of %d frames\n",
               name.c_str(), c.voxelM * 1e3, out.depthM * 1e3, out.depthM / c.voxelM, out.where.empty() ? "" : ", ",

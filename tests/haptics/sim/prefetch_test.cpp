@@ -138,7 +138,7 @@ TEST_F(Prefetch, BudgetTooSmallForTheTablesIsAClearError) {
 /// Models of the ball over the plate: the static voxmap whole, and paged in `budgetBytes`.
 struct Models {
   SimModel whole;
-  SimModel paged;
+  BuiltScene paged;
 };
 
 Models models(const Scene& scene, const CacheOptions& cache, double capacity) {
@@ -154,13 +154,14 @@ Models models(const Scene& scene, const CacheOptions& cache, double capacity) {
                                                const VoxelizeOptions& o, const ProgressFn&) {
     return voxelizeWithinBudget(objects, o, cache, budget);
   };
-  return {std::move(whole), buildSceneModel(scene, {"ball"}, options)};
+  return {std::move(whole), buildScene(scene, {"ball"}, options)};
 }
 
 TEST_F(Prefetch, FramesAreSuspendedNeverWrongWhileVoxelsArePagedIn) {
   const Models m = models(scene_, cache(), 1e6);
   ASSERT_TRUE(m.paged.staticPager);
-  ASSERT_FALSE(m.whole.staticPager);
+  ASSERT_TRUE(m.paged.model.staticVoxmap->isPaged());
+  ASSERT_FALSE(m.whole.staticVoxmap->isPaged());
   // the ball swept over the plate and pressed onto it, faster than the pager may keep up
   std::vector<MotionKeyframe> keys;
   std::mt19937 random(11);
@@ -170,31 +171,32 @@ TEST_F(Prefetch, FramesAreSuspendedNeverWrongWhileVoxelsArePagedIn) {
   }
   ScriptedDevice device(MotionScript(keys, "sweep"));
   HapticDevice* devices[] = {&device};
-  HandleInput handles[1];
-  SimState state = makeSimState(m.paged);
+  LocalSimulation sim(m.paged.model, m.paged.staticPager);
+  SimState& state = sim.state;
   std::uint64_t contactFrames = 0;
   for (int frame = 0; frame < 3000; ++frame) {
     // what the whole voxmap finds at this pose
     const Pointshell& shell = m.whole.objects[0].shell;
     std::vector<PointContact> contacts(shell.size());
     const std::uint32_t expected = samplePoints(
-        shell, *m.whole.staticVoxmap, VoxelTransform::make(objectPose(m.paged, state, 0), m.whole.staticVoxmap->grid()),
+        shell, *m.whole.staticVoxmap,
+        VoxelTransform::make(objectPose(m.paged.model, state, 0), m.whole.staticVoxmap->grid()),
         m.whole.pairs[0].fieldShifts, state.forceLayer, 0, static_cast<std::uint32_t>(shell.size()), contacts.data());
-    const Pose before = objectPose(m.paged, state, 0);
-    stepWithDevices(m.paged, state, devices, handles);
-    ASSERT_FALSE(state.stopped);
-    if (state.suspensions.active) {
+    const Pose before = objectPose(m.paged.model, state, 0);
+    sim.stepWithDevices(devices);
+    ASSERT_FALSE(sim.workspace.stopped);
+    if (sim.workspace.suspensions.active) {
       // a haptic loop waits for its next period; this one runs unpaced otherwise
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
       // nothing moves, the device feels nothing
-      EXPECT_EQ(objectPose(m.paged, state, 0).position, before.position);
-      EXPECT_EQ(state.last[0].feedback.forceWorld, glm::dvec3(0.0));
-      EXPECT_EQ(state.last[0].contactForceWorld, glm::dvec3(0.0));
+      EXPECT_EQ(objectPose(m.paged.model, state, 0).position, before.position);
+      EXPECT_EQ(sim.object(0).feedback.forceWorld, glm::dvec3(0.0));
+      EXPECT_EQ(sim.object(0).contactForceWorld, glm::dvec3(0.0));
     } else {
       // every contact tested in its frame (it is in the contact queue now), but a surface
       // point sunk through the plate's face, which awareness leaves to its next test
       // (coherence_test.cpp)
-      const PointQueues& queues = state.coherence[0].queues();
+      const PointQueues& queues = sim.workspace.coherence[0].queues();
       for (std::uint32_t i = 0; i < expected; ++i) {
         const PointContact& c = contacts[i];
         const bool throughAFace = c.value == kValueInterior && shell.features[c.point] != PointFeature::Vertex;
@@ -203,15 +205,36 @@ TEST_F(Prefetch, FramesAreSuspendedNeverWrongWhileVoxelsArePagedIn) {
       contactFrames += expected > 0 ? 1 : 0;
     }
   }
-  EXPECT_GT(state.suspensions.count, 0u);
+  EXPECT_GT(sim.workspace.suspensions.count, 0u);
   EXPECT_GT(contactFrames, 300u);
   EXPECT_GT(m.paged.staticPager->blocksRead(), m.paged.staticPager->slotCount());  // it evicted
+}
+
+TEST_F(Prefetch, APagedModelNeedsItsPagerAndAWholeOneNone) {
+  const Models m = models(scene_, cache(), 1e6);
+  EXPECT_THROW(makeSimWorkspace(m.paged.model, makeSimState(m.paged.model)), Error);
+  EXPECT_THROW(makeSimWorkspace(m.whole, makeSimState(m.whole), m.paged.staticPager), Error);
+  SceneModelOptions options;
+  options.staticVoxelSizeM = kVoxel;
+  options.pointSpacingM = kVoxel;
+  const std::uint64_t budget = budgetFor(*m.whole.staticVoxmap, 192);
+  options.budgetedVoxelizeFn = [this, budget](std::span<const SceneObject* const> objects,
+                                              const VoxelizeOptions& o, const ProgressFn&) {
+    return voxelizeWithinBudget(objects, o, cache(), budget);
+  };
+  try {
+    buildSceneModel(scene_, {"ball"}, options);
+    FAIL() << "a paged scene built as a bare model";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("buildScene"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(Prefetch, ASuspensionLongerThanTwoSecondsStopsTheRun) {
   const Models m = models(scene_, cache(), 1e6);
   ASSERT_TRUE(m.paged.staticPager);
-  SimState state = makeSimState(m.paged);
+  LocalSimulation sim(m.paged.model, m.paged.staticPager);
+  SimState& state = sim.state;
   // the cache file loses its words: nothing more can be read
   for (const auto& entry : fs::directory_iterator(cache().directory)) {
     if (entry.path().filename().string().rfind("voxmap-", 0) == 0) fs::resize_file(entry.path(), 4096);
@@ -219,14 +242,14 @@ TEST_F(Prefetch, ASuspensionLongerThanTwoSecondsStopsTheRun) {
   // the ball sweeps sideways over the plate, into chunks never read
   HandleInput handles[1] = {{Pose{glm::dvec3(0.04, 0.0, -0.002), identityQuat()}, {}}};
   const auto start = std::chrono::steady_clock::now();
-  while (!state.stopped && std::chrono::steady_clock::now() - start < std::chrono::seconds(10)) {
-    step(m.paged, state, handles);
+  while (!sim.workspace.stopped && std::chrono::steady_clock::now() - start < std::chrono::seconds(10)) {
+    sim.step(handles);
   }
-  EXPECT_TRUE(state.stopped);
-  EXPECT_GT(state.suspensions.longestS, kMaxSuspensionS);
+  EXPECT_TRUE(sim.workspace.stopped);
+  EXPECT_GT(sim.workspace.suspensions.longestS, kMaxSuspensionS);
   EXPECT_GT(m.paged.staticPager->readFailures(), 0u);  // each failed read gave its slot back
   const std::uint64_t frame = state.frame;
-  step(m.paged, state, handles);
+  EXPECT_EQ(sim.step(handles), kFrameStopped);
   EXPECT_EQ(state.frame, frame);  // a stopped run stays stopped
 }
 

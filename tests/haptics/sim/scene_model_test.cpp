@@ -8,7 +8,7 @@
 #include "haptics/core/error.h"
 #include "haptics/dynamics/mass_properties.h"
 #include "haptics/scene/gltf_loader.h"
-#include "haptics/sim/simulation.h"
+#include "haptics/sim/local_simulation.h"
 #include "support/contact_scenes.h"
 #include "support/gltf_fixtures.h"
 
@@ -72,15 +72,16 @@ TEST_F(SceneModelGroup, AGroupMovesAsOneObjectWithTheMassOfAllItsParts) {
 TEST_F(SceneModelGroup, AGroupFallsOntoTheBlockAsOneBody) {
   const Scene scene = pistonScene();
   const SimModel model = test::freeModel(scene, {"piston"}, kVoxel, glm::dvec3(0.0, 0.0, -9.81));
-  SimState state = makeSimState(model);
-  for (int frame = 0; frame < 600; ++frame) step(model, state, {});
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
+  for (int frame = 0; frame < 600; ++frame) sim.step();
   const Pose pose = objectPose(model, state, 0);
 
   // the crown (the lower part) rests on the block within a voxel, the pin 3 mm above it
   EXPECT_NEAR(test::lowestZ(*scene.find("crown"), pose), kBlockTopZ, kVoxel);
   EXPECT_NEAR(test::lowestZ(*scene.find("pin"), pose), kBlockTopZ + 0.003, kVoxel);
   EXPECT_LT(std::abs(pose.position.x) + std::abs(pose.position.y), kVoxel);
-  EXPECT_GT(state.last[0].contacts, 0u);
+  EXPECT_GT(sim.object(0).contacts, 0u);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "haptics/sim/simulation.h"
+#include "haptics/sim/local_simulation.h"
 
 #include <cmath>
 #include <cstring>
@@ -16,12 +16,12 @@ namespace {
 constexpr double kVoxel = 0.0005;  // m
 const glm::dvec3 kGravity(0.0, 0.0, -9.81);
 
-/// Runs `frames` free frames; calls `each(state)` after every frame.
+/// Runs `frames` free frames; calls `each(sim.state)` after every frame.
 template <typename Each>
-void runFree(const SimModel& model, SimState& state, int frames, Each&& each) {
+void runFree(LocalSimulation& sim, int frames, Each&& each) {
   for (int i = 0; i < frames; ++i) {
-    step(model, state, {});
-    each(state);
+    sim.step();
+    each(sim.state);
   }
 }
 
@@ -47,9 +47,10 @@ Scene boxOverPlate(double gapM) {
 TEST(Simulation, SphereDroppedOnAPlateRestsWithAnExactGapAndNeverPenetrates) {
   const Scene scene = sphereOverPlate(0.01, 0.001);
   const SimModel model = test::freeModel(scene, {"ball"}, kVoxel, kGravity);
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
   double lowest = 1e9;
-  runFree(model, state, 1500, [&](const SimState& s) {
+  runFree(sim, 1500, [&](const SimState& s) {
     lowest = std::min(lowest, test::lowestZ(scene.objects[1], s.bodies[0].pose(model.objects[0].body)));
   });
   const double gap = test::lowestZ(scene.objects[1], objectPose(model, state, 0));
@@ -58,9 +59,9 @@ TEST(Simulation, SphereDroppedOnAPlateRestsWithAnExactGapAndNeverPenetrates) {
   EXPECT_LE(gap, 2.0 * kVoxel);
   EXPECT_LT(glm::length(state.bodies[0].linearVelocityWorld), 1e-3);
   // at rest the contacts carry the weight
-  EXPECT_NEAR(state.last[0].contactForceWorld.z, model.objects[0].body.massKg * 9.81,
+  EXPECT_NEAR(sim.object(0).contactForceWorld.z, model.objects[0].body.massKg * 9.81,
               0.05 * model.objects[0].body.massKg * 9.81);
-  EXPECT_GT(state.last[0].contacts, 0u);
+  EXPECT_GT(sim.object(0).contacts, 0u);
 }
 
 TEST(Simulation, RaisingTheForceLayerLiftsTheSphereByAVoxelPerLayer) {
@@ -68,15 +69,17 @@ TEST(Simulation, RaisingTheForceLayerLiftsTheSphereByAVoxelPerLayer) {
   const SimModel model = test::freeModel(scene, {"ball"}, kVoxel, kGravity);
   double gap[2];
   for (int k = 0; k < 2; ++k) {
-    SimState state = makeSimState(model);
-    ASSERT_TRUE(setForceLayer(model, state, static_cast<std::uint8_t>(kDefaultForceLayer + 2 * k)));
-    runFree(model, state, 1500, [](const SimState&) {});
+    LocalSimulation sim(model);
+    SimState& state = sim.state;
+    ASSERT_TRUE(setForceLayer(model, state, sim.workspace, static_cast<std::uint8_t>(kDefaultForceLayer + 2 * k)));
+    runFree(sim, 1500, [](const SimState&) {});
     gap[k] = test::lowestZ(scene.objects[1], objectPose(model, state, 0));
   }
   EXPECT_NEAR(gap[1] - gap[0], 2.0 * kVoxel, 0.5 * kVoxel);
-  SimState state = makeSimState(model);
-  EXPECT_FALSE(setForceLayer(model, state, 0));
-  EXPECT_FALSE(setForceLayer(model, state, 11));
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
+  EXPECT_FALSE(setForceLayer(model, state, sim.workspace, 0));
+  EXPECT_FALSE(setForceLayer(model, state, sim.workspace, 11));
   EXPECT_EQ(state.forceLayer, kDefaultForceLayer);
 }
 
@@ -91,8 +94,9 @@ TEST(Simulation, PointsFromAFreeLayerHoldTheSphereThatManyVoxelsHigher) {
     options.sim.gravityWorld = kGravity;
     SimModel model = buildSceneModel(scene, {"ball"}, options);
     model.objects[0].coupled = false;
-    SimState state = makeSimState(model);
-    runFree(model, state, 1500, [](const SimState&) {});
+    LocalSimulation sim(model);
+    SimState& state = sim.state;
+    runFree(sim, 1500, [](const SimState&) {});
     gap[layer / 2] = test::lowestZ(scene.objects[1], objectPose(model, state, 0));
   }
   EXPECT_NEAR(gap[1] - gap[0], 2.0 * kVoxel, 0.75 * kVoxel);
@@ -108,12 +112,13 @@ TEST(Simulation, PreContactDampingSlowsTheApproachBeforeContact) {
     options.sim.preContactDamping = damped == 1;
     SimModel model = buildSceneModel(scene, {"ball"}, options);
     model.objects[0].coupled = false;
-    SimState state = makeSimState(model);
+    LocalSimulation sim(model);
+    SimState& state = sim.state;
     state.bodies[0].linearVelocityWorld = glm::dvec3(0.0, 0.0, -0.1);
     const double energyBefore = kineticEnergyJ(model.objects[0].body, state.bodies[0]);
     speedAtContact[damped] = -1.0;
-    runFree(model, state, 400, [&](const SimState& s) {
-      if (speedAtContact[damped] < 0.0 && s.last[0].contacts > 0) {
+    runFree(sim, 400, [&](const SimState& s) {
+      if (speedAtContact[damped] < 0.0 && sim.object(0).contacts > 0) {
         speedAtContact[damped] = glm::length(s.bodies[0].linearVelocityWorld);
       }
       EXPECT_LE(kineticEnergyJ(model.objects[0].body, s.bodies[0]), energyBefore * (1.0 + 1e-9));
@@ -126,15 +131,16 @@ TEST(Simulation, PreContactDampingSlowsTheApproachBeforeContact) {
 TEST(Simulation, BoxRestsFlatOnAPlateWithNegligibleTorque) {
   const Scene scene = boxOverPlate(0.0008);
   const SimModel model = test::freeModel(scene, {"box"}, kVoxel, kGravity);
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
   double lowest = 1e9;
-  runFree(model, state, 1500, [&](const SimState& s) {
+  runFree(sim, 1500, [&](const SimState& s) {
     lowest = std::min(lowest, test::lowestZ(scene.objects[1], s.bodies[0].pose(model.objects[0].body)));
   });
   const double weightN = model.objects[0].body.massKg * 9.81;
   const double tiltRad = glm::length(rotationVector(state.bodies[0].orientation));
   EXPECT_LT(tiltRad, 0.002);
-  EXPECT_LT(glm::length(state.last[0].contactTorqueWorld), 0.01 * weightN * 0.01);
+  EXPECT_LT(glm::length(sim.object(0).contactTorqueWorld), 0.01 * weightN * 0.01);
   EXPECT_GT(lowest, 0.0);
   // the plate's top lies on a voxel boundary, so both voxel layers it touches are
   // surface voxels and the force layer sits half a voxel higher than usual
@@ -149,10 +155,11 @@ TEST(Simulation, GeometricalAwarenessRestsTheBoxAlikeWithFarFewerContacts) {
   std::uint32_t contacts[2];
   for (int aware = 0; aware < 2; ++aware) {
     const SimModel model = test::freeModel(scene, {"box"}, kVoxel, kGravity, aware == 1);
-    SimState state = makeSimState(model);
-    runFree(model, state, 1200, [](const SimState&) {});
+    LocalSimulation sim(model);
+    SimState& state = sim.state;
+    runFree(sim, 1200, [](const SimState&) {});
     gap[aware] = test::lowestZ(scene.objects[1], objectPose(model, state, 0));
-    contacts[aware] = state.last[0].contacts;
+    contacts[aware] = sim.object(0).contacts;
   }
   EXPECT_NEAR(gap[1], gap[0], kVoxel);
   EXPECT_GT(contacts[1], 0u);
@@ -173,13 +180,14 @@ TEST(Simulation, CrossedRodsPushApartAlongTheCommonNormal) {
     appendBox(m, glm::rotate(t, M_PI / 4, glm::dvec3(0.0, 1.0, 0.0)), glm::dvec3(half, 0.03, half));
   }));
   const SimModel model = test::freeModel(scene, {"upper"}, kVoxel, glm::dvec3(0.0));
-  SimState state = makeSimState(model);
-  step(model, state, {});
-  const glm::dvec3 f = state.last[0].contactForceWorld;
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
+  sim.step();
+  const glm::dvec3 f = sim.object(0).contactForceWorld;
   EXPECT_GT(f.z, 0.0);
   EXPECT_LT(std::hypot(f.x, f.y), 0.1 * f.z) << f.x << " " << f.y << " " << f.z;
   double lowestGap = 1e9;
-  runFree(model, state, 300, [&](const SimState& s) {
+  runFree(sim, 300, [&](const SimState& s) {
     lowestGap = std::min(lowestGap, test::lowestZ(scene.objects[1], s.bodies[0].pose(model.objects[0].body)) - edge);
   });
   // pushed apart along the common normal (z), not sideways
@@ -198,12 +206,13 @@ TEST(Simulation, BallStaysSeatedInItsSocket) {
   options.sim.gravityWorld = kGravity;
   SimModel model = buildSceneModel(scene, {"ball"}, options);
   model.objects[0].coupled = false;
-  SimState state = makeSimState(model);
-  runFree(model, state, 300, [](const SimState&) {});
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
+  runFree(sim, 300, [](const SimState&) {});
   const glm::dvec3 moved = objectPose(model, state, 0).position;
   EXPECT_LT(glm::length(moved), 0.00035) << "the ball sank or jumped";
-  EXPECT_GT(state.last[0].contacts, 0u);
-  EXPECT_NEAR(state.last[0].contactForceWorld.z, model.objects[0].body.massKg * 9.81,
+  EXPECT_GT(sim.object(0).contacts, 0u);
+  EXPECT_NEAR(sim.object(0).contactForceWorld.z, model.objects[0].body.massKg * 9.81,
               0.1 * model.objects[0].body.massKg * 9.81);
 }
 
@@ -227,9 +236,9 @@ TEST(Simulation, PegSlidesIntoItsHoleWithoutJamming) {
                                       {0.8, Pose{glm::dvec3(0.0001, 0.0, -0.006), identityQuat()}}};
   ScriptedDevice device(MotionScript(keys, "peg script"));
   HapticDevice* devices[] = {&device};
-  HandleInput handles[1];
-  SimState state = makeSimState(model);
-  for (int i = 0; i < 800; ++i) stepWithDevices(model, state, devices, handles);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
+  for (int i = 0; i < 800; ++i) sim.stepWithDevices(devices);
   const glm::dvec3 at = objectPose(model, state, 0).position;
   EXPECT_LT(at.z, -0.0057) << "the peg jammed at depth " << -at.z;
   EXPECT_LT(std::hypot(at.x, at.y), 0.0002);
@@ -245,11 +254,12 @@ TEST(Simulation, LongBarOnHundredsOfShallowContactsStaysCalm) {
               glm::dvec3(0.045, 0.0025, 0.0025));
   }));
   const SimModel model = test::freeModel(scene, {"bar"}, kVoxel, kGravity, false);
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
   std::uint32_t contacts = 0;
   double fastestSpin = 0.0;
-  runFree(model, state, 1500, [&](const SimState& s) {
-    contacts = std::max(contacts, s.last[0].contacts);
+  runFree(sim, 1500, [&](const SimState& s) {
+    contacts = std::max(contacts, sim.object(0).contacts);
     if (s.frame > 1000) fastestSpin = std::max(fastestSpin, glm::length(s.bodies[0].angularVelocityWorld));
   });
   EXPECT_GT(contacts, 200u);
@@ -269,7 +279,8 @@ TEST(Simulation, TwoMovingBoxesCollideWithEqualAndOppositeForces) {
   }
   const SimModel model = test::freeModel(scene, {"left", "right"}, kVoxel, glm::dvec3(0.0));
   ASSERT_EQ(model.pairs.size(), 1u);
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
   state.bodies[0].linearVelocityWorld = glm::dvec3(0.05, 0.0, 0.0);
   auto momentum = [&] {
     return model.objects[0].body.massKg * state.bodies[0].linearVelocityWorld +
@@ -277,9 +288,9 @@ TEST(Simulation, TwoMovingBoxesCollideWithEqualAndOppositeForces) {
   };
   const glm::dvec3 before = momentum();
   std::uint32_t contacts = 0;
-  runFree(model, state, 200, [&](const SimState& s) {
-    contacts = std::max(contacts, s.last[0].contacts);
-    EXPECT_LT(glm::length(s.last[0].contactForceWorld + s.last[1].contactForceWorld), 1e-12);
+  runFree(sim, 200, [&](const SimState&) {
+    contacts = std::max(contacts, sim.object(0).contacts);
+    EXPECT_LT(glm::length(sim.object(0).contactForceWorld + sim.object(1).contactForceWorld), 1e-12);
   });
   EXPECT_GT(contacts, 0u);
   EXPECT_LT(glm::length(momentum() - before), 1e-9 * glm::length(before));
@@ -291,19 +302,20 @@ TEST(Simulation, TwoMovingBoxesCollideWithEqualAndOppositeForces) {
 TEST(Simulation, PairsOutOfRangeCostNoPointTests) {
   const Scene scene = sphereOverPlate(0.01, 0.05);
   const SimModel model = test::freeModel(scene, {"ball"}, kVoxel, glm::dvec3(0.0));
-  SimState state = makeSimState(model);
-  runFree(model, state, 10, [](const SimState& s) { EXPECT_EQ(s.last[0].tested, 0u); });
-  EXPECT_EQ(state.pairsSkipped, 10u);
+  LocalSimulation sim(model);
+  runFree(sim, 10, [&](const SimState&) { EXPECT_EQ(sim.object(0).tested, 0u); });
+  EXPECT_EQ(sim.workspace.counters.pairsSkipped, 10u);
 }
 
 TEST(Simulation, SameInputsGiveTheSameBits) {
   const Scene scene = boxOverPlate(0.0008);
   const SimModel model = test::freeModel(scene, {"box"}, kVoxel, kGravity);
-  SimState a = makeSimState(model);
-  SimState b = makeSimState(model);
-  runFree(model, a, 300, [](const SimState&) {});
-  runFree(model, b, 300, [](const SimState&) {});
-  EXPECT_EQ(std::memcmp(&a.bodies[0], &b.bodies[0], sizeof(RigidBodyState)), 0);
+  LocalSimulation a(model);
+  LocalSimulation b(model);
+  runFree(a, 300, [](const SimState&) {});
+  runFree(b, 300, [](const SimState&) {});
+  EXPECT_EQ(std::memcmp(&a.state.bodies[0], &b.state.bodies[0], sizeof(RigidBodyState)), 0);
+  EXPECT_EQ(hashState(a.state), hashState(b.state));
 }
 
 TEST(SceneModel, UnknownOrRepeatedObjectIsAnErrorNamingIt) {

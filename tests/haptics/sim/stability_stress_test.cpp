@@ -59,11 +59,16 @@ bool finite(const glm::dquat& q) {
 
 /// The checks every frame passes: finite states and wrenches, no skipped integration
 /// step, device feedback within `model.deviceLimits`.
-testing::AssertionResult saneFrame(const SimModel& model, const SimState& state) {
+testing::AssertionResult saneFrame(const LocalSimulation& sim) {
+  const SimModel& model = sim.model();
+  const SimState& state = sim.state;
+  if (sim.lastStatus & kFrameNonFiniteZeroed) {
+    return testing::AssertionFailure() << "a non-finite value was zeroed at frame " << state.frame;
+  }
   const DeviceLimits& limits = model.deviceLimits;
   for (std::size_t i = 0; i < state.bodies.size(); ++i) {
     const RigidBodyState& b = state.bodies[i];
-    const ObjectFrame& f = state.last[i];
+    const ObjectFrame& f = sim.object(i);
     if (!finite(b.comWorld) || !finite(b.orientation) || !finite(b.linearVelocityWorld) ||
         !finite(b.angularVelocityWorld)) {
       return testing::AssertionFailure() << "object " << i << ": non-finite body state at frame " << state.frame;
@@ -160,13 +165,15 @@ testing::AssertionResult abovePlate(const Scene& scene, const SimModel& model, c
   return testing::AssertionSuccess();
 }
 
-/// Runs `frames` passive frames of `model` (no handle) from `state`, checking every frame;
+/// Runs `frames` passive frames of `sim` (no handle), checking every frame;
 /// `settles`: the bodies come to rest by kSettleS (else only the initial energy bounds).
-void runPassive(const Scene& scene, const SimModel& model, SimState& state, int frames, bool settles = true) {
+void runPassive(const Scene& scene, LocalSimulation& sim, int frames, bool settles = true) {
+  const SimModel& model = sim.model();
+  const SimState& state = sim.state;
   PassiveEnergy energy(mechanicalEnergyJ(model, state), settles ? kSettleS : std::numeric_limits<double>::infinity());
   for (int i = 0; i < frames; ++i) {
-    step(model, state, {});
-    ASSERT_TRUE(saneFrame(model, state));
+    sim.step();
+    ASSERT_TRUE(saneFrame(sim));
     ASSERT_TRUE(energy.check(model, state));
     ASSERT_TRUE(abovePlate(scene, model, state));
   }
@@ -214,10 +221,10 @@ TEST(StabilityStress, ObjectsRestingOnThePlateNeverGainEnergy) {
     appendCylinder(m, glm::rotate(at(0.025, -0.01, kDropM + 0.0003), 0.03, glm::dvec3(0.0, 1.0, 0.0)), 0.006, 0.012, 24);
   }));
   const SimModel model = passiveModel(scene, {"box", "ball", "cylinder"});
-  SimState state = makeSimState(model);
-  runPassive(scene, model, state, kFrames);
+  LocalSimulation sim(model);
+  runPassive(scene, sim, kFrames);
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
-    EXPECT_GT(state.last[i].contacts, 0u) << model.objects[i].name << " is not on the plate";
+    EXPECT_GT(sim.object(i).contacts, 0u) << model.objects[i].name << " is not on the plate";
   }
 }
 
@@ -256,9 +263,9 @@ TEST(StabilityStress, LightBoxOnAThousandTimesHeavierBoxStaysFiniteAndNeverExcee
   const SimModel model = passiveModel(scene, {"heavy", "light"});
   // the masses come from the single-precision meshes: the ratio is 1000 to ~1e-7
   ASSERT_NEAR(model.objects[0].body.massKg / model.objects[1].body.massKg, 1000.0, 1e-3);
-  SimState state = makeSimState(model);
-  runPassive(scene, model, state, kFrames, false);
-  EXPECT_GT(state.last[1].contacts, 0u) << "the light box fell off";
+  LocalSimulation sim(model);
+  runPassive(scene, sim, kFrames, false);
+  EXPECT_GT(sim.object(1).contacts, 0u) << "the light box fell off";
 }
 
 // It cannot come to rest, and why (measured before the depth limits, and the same after):
@@ -280,13 +287,14 @@ TEST(StabilityStress, LightBoxOnAThousandTimesHeavierBoxGainsAtMostTheEdgeJumpsE
   constexpr double kEdgeGainJ = 3e-6;
   const Scene scene = stackedBoxes(1000.0);
   const SimModel model = passiveModel(scene, {"heavy", "light"});
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
   PassiveEnergy energy(mechanicalEnergyJ(model, state), std::numeric_limits<double>::infinity());
   double settledLowestJ = std::numeric_limits<double>::infinity();
   double largestRiseJ = 0.0;
   for (int i = 0; i < kFrames; ++i) {
-    step(model, state, {});
-    ASSERT_TRUE(saneFrame(model, state));
+    sim.step();
+    ASSERT_TRUE(saneFrame(sim));
     ASSERT_TRUE(energy.check(model, state));
     ASSERT_TRUE(abovePlate(scene, model, state));
     if (state.timeS < kSettleS) continue;
@@ -296,7 +304,7 @@ TEST(StabilityStress, LightBoxOnAThousandTimesHeavierBoxGainsAtMostTheEdgeJumpsE
   }
   std::printf("[ figures  ] light box on a heavy box: settled energy rose at most %.3g J\n", largestRiseJ);
   EXPECT_LT(largestRiseJ, kEdgeGainJ);
-  EXPECT_GT(state.last[1].contacts, 0u) << "the light box fell off";
+  EXPECT_GT(sim.object(1).contacts, 0u) << "the light box fell off";
 }
 
 // ---------------------------------------------------------------------------------------
@@ -368,23 +376,23 @@ struct DragBounds {
 void runDragged(const SimModel& model, const Scene& scene, int frames, const DragBounds& bounds) {
   ScriptedDevice device(dragToAndFro(frames * model.dtS), model.deviceLimits);
   HapticDevice* devices[] = {&device};
-  HandleInput handles[1];
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  const SimState& state = sim.state;
   std::uint64_t clampedFrames = 0;
   for (int i = 0; i < frames; ++i) {
-    stepWithDevices(model, state, devices, handles);
-    ASSERT_TRUE(saneFrame(model, state));
+    sim.stepWithDevices(devices);
+    ASSERT_TRUE(saneFrame(sim));
     const Pose pose = objectPose(model, state, 0);
-    const double followM = glm::length(pose.position - handles[0].poseWorld.position);
+    const double followM = glm::length(pose.position - sim.deviceHandles()[0].poseWorld.position);
     ASSERT_LT(followM, bounds.followM) << "frame " << state.frame;
     const double lowestM = test::lowestZ(scene.objects[1], pose);
     ASSERT_GT(lowestM, bounds.lowestM) << "frame " << state.frame;
     if (state.timeS > 0.1) {
-      ASSERT_GE(state.last[0].contacts, bounds.contacts) << "frame " << state.frame;
+      ASSERT_GE(sim.object(0).contacts, bounds.contacts) << "frame " << state.frame;
     }
-    clampedFrames += state.last[0].feedback.forceClamped ? 1 : 0;
+    clampedFrames += sim.object(0).feedback.forceClamped ? 1 : 0;
   }
-  EXPECT_GT(state.last[0].contacts, 0u);
+  EXPECT_GT(sim.object(0).contacts, 0u);
   EXPECT_GT(clampedFrames, 0u) << "the drag never reached the force limit";
   EXPECT_EQ(device.feedbackCount(), static_cast<std::uint64_t>(frames));
 }
@@ -438,18 +446,19 @@ TEST(StabilityStress, BarRestingOnHundredsOfContactsNeverGainsEnergy) {
               glm::dvec3(0.04, 0.003, 0.003));
   }));
   const SimModel model = passiveModel(scene, {"bar"}, false);
-  SimState state = makeSimState(model);
+  LocalSimulation sim(model);
+  SimState& state = sim.state;
   // the bar has stopped bouncing by 0.3 s (with awareness on it is at rest, kinetic energy
   // below 1e-12 J, by 0.27 s); it reaches the plate's edge at 0.72 s
   constexpr double kBarSettleS = 0.5;
   PassiveEnergy energy(mechanicalEnergyJ(model, state), kBarSettleS);
   std::uint32_t fewestSettledContacts = std::numeric_limits<std::uint32_t>::max();
   for (int i = 0; i < kFrames; ++i) {
-    step(model, state, {});
-    ASSERT_TRUE(saneFrame(model, state));
+    sim.step();
+    ASSERT_TRUE(saneFrame(sim));
     ASSERT_TRUE(energy.check(model, state));
     ASSERT_TRUE(abovePlate(scene, model, state));
-    if (state.timeS >= kBarSettleS) fewestSettledContacts = std::min(fewestSettledContacts, state.last[0].contacts);
+    if (state.timeS >= kBarSettleS) fewestSettledContacts = std::min(fewestSettledContacts, sim.object(0).contacts);
   }
   EXPECT_GE(fewestSettledContacts, 100u);
   EXPECT_LT(totalKineticEnergyJ(model, state), energy.toleranceJ());
@@ -471,11 +480,12 @@ TEST(StabilityStress, BoxHeldOnThePlateAtTheStiffestStableCouplingComesToRest) {
   const Scene scene = boxOnPlate(kBoxHalfM);
   const SimModel model = draggedModel(scene, kMaxStableStiffnessMultiple);
   for (const double pressM : {kPressM, kPressM + kVoxel}) {
-    SimState state = makeSimState(model);
+    LocalSimulation sim(model);
+    SimState& state = sim.state;
     const HandleInput handles[1] = {{Pose{glm::dvec3(0.0, 0.0, pressM), identityQuat()}, {}}};
     for (int i = 0; i < kFrames; ++i) {
-      step(model, state, handles);
-      ASSERT_TRUE(saneFrame(model, state));
+      sim.step(handles);
+      ASSERT_TRUE(saneFrame(sim));
     }
     EXPECT_LT(glm::length(state.bodies[0].linearVelocityWorld), 1e-6) << "press " << pressM << " m";
     EXPECT_LT(glm::length(state.bodies[0].angularVelocityWorld), 1e-6) << "press " << pressM << " m";

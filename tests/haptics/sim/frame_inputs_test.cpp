@@ -1,0 +1,79 @@
+// What a frame takes from outside: external wrenches push objects as forces do, and a
+// non-finite input is dropped, reported, and harms nothing.
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "haptics/sim/local_simulation.h"
+#include "support/contact_scenes.h"
+
+namespace voxhap {
+namespace {
+
+constexpr double kVoxel = 0.0005;  // m
+
+/// A box far above the plate (no contact), free or coupled to a handle.
+SimModel boxInTheAir(bool coupled) {
+  Scene scene;
+  scene.objects.push_back(test::plate());
+  scene.objects.push_back(test::meshObject("box", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m, test::at(0.0, 0.0, 0.03), glm::dvec3(0.01, 0.01, 0.005));
+  }));
+  SimModel model = test::freeModel(scene, {"box"}, kVoxel, glm::dvec3(0.0));
+  model.objects[0].coupled = coupled;
+  return model;
+}
+
+TEST(FrameInputs, AnExternalWrenchAcceleratesTheObjectAsNewtonSays) {
+  const SimModel model = boxInTheAir(false);
+  LocalSimulation sim(model);
+  const double massKg = model.objects[0].body.massKg;
+  const ExternalWrench push{glm::dvec3(0.0, 0.02, 0.0), glm::dvec3(0.0)};
+  for (int f = 0; f < 100; ++f) ASSERT_EQ(sim.step({}, std::span(&push, 1)), kFrameOk);
+  // semi-implicit Euler: v = F/m·t exactly (no contact, no gravity)
+  EXPECT_NEAR(sim.state.bodies[0].linearVelocityWorld.y, 0.02 / massKg * 0.1, 1e-12);
+  EXPECT_EQ(sim.state.bodies[0].linearVelocityWorld.x, 0.0);
+  EXPECT_EQ(sim.object(0).contacts, 0u);
+}
+
+TEST(FrameInputs, ATorqueTurnsTheObjectAboutItsCentreOfMass) {
+  const SimModel model = boxInTheAir(false);
+  LocalSimulation sim(model);
+  const glm::dvec3 comBefore = sim.state.bodies[0].comWorld;
+  const ExternalWrench twist{glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1e-4)};
+  for (int f = 0; f < 50; ++f) sim.step({}, std::span(&twist, 1));
+  EXPECT_GT(sim.state.bodies[0].angularVelocityWorld.z, 0.0);
+  EXPECT_EQ(sim.state.bodies[0].comWorld, comBefore);
+}
+
+TEST(FrameInputs, ANonFiniteWrenchIsDroppedAndReported) {
+  const SimModel model = boxInTheAir(false);
+  LocalSimulation sim(model);
+  const RigidBodyState before = sim.state.bodies[0];
+  const ExternalWrench bad{glm::dvec3(std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0), glm::dvec3(0.0)};
+  EXPECT_EQ(sim.step({}, std::span(&bad, 1)), kFrameNonFiniteZeroed);
+  EXPECT_EQ(sim.state.bodies[0].comWorld, before.comWorld);
+  EXPECT_EQ(sim.state.bodies[0].linearVelocityWorld, glm::dvec3(0.0));
+  EXPECT_EQ(sim.state.frame, 1u);  // the frame still ran
+}
+
+TEST(FrameInputs, ANonFiniteHandleHoldsNothingAndSendsNoForce) {
+  const SimModel model = boxInTheAir(true);
+  LocalSimulation sim(model);
+  HandleInput handle{sim.state.bodies[0].pose(model.objects[0].body), {}};
+  handle.poseWorld.position.z += 0.001;  // a finite handle 1 mm above pulls the box up
+  EXPECT_EQ(sim.step(std::span(&handle, 1)), kFrameOk);
+  EXPECT_LT(sim.object(0).feedback.forceWorld.z, 0.0);  // the user feels the box hang on the handle
+  EXPECT_GT(sim.state.bodies[0].linearVelocityWorld.z, 0.0);
+
+  LocalSimulation other(model);
+  handle.poseWorld.orientation.x = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(other.step(std::span(&handle, 1)), kFrameNonFiniteZeroed);
+  EXPECT_EQ(other.object(0).feedback.forceWorld, glm::dvec3(0.0));
+  EXPECT_EQ(other.state.bodies[0].linearVelocityWorld, glm::dvec3(0.0));
+}
+
+}  // namespace
+}  // namespace voxhap
