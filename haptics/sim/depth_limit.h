@@ -70,7 +70,7 @@ struct DepthLimitFrame {
   double scale = 1.0;         ///< the last pass's scale of the whole step (1: none needed)
 };
 
-/// Room for the projection, sized at load time (makeSimState).
+/// Room for the projection, sized at load time (makeSimWorkspace).
 struct DepthLimitScratch {
   /// One pair's limit J·Δ ≤ target on the displacements of bodies a and b (b < 0: static).
   struct Limit {

@@ -7,7 +7,7 @@
 ///      (or, with coherence off, every point) and sums tangent-plane forces, applied equal
 ///      and opposite;
 ///   3. each coupled object feels its handle through the virtual coupling; each object is
-///      integrated as a free rigid body (gravity, coupling, contacts);
+///      integrated as a free rigid body (gravity, coupling, external wrenches, contacts);
 ///   4. its motion is limited to MaxTravel (at most half a voxel near contact, paper §5;
 ///      half a chunk when all its pairs are out of range or collapsed, §5.1), which the
 ///      user feels as viscosity;
