@@ -1,17 +1,16 @@
 #pragma once
-/// A 128-bit content hash for cache keys and file checksums (not cryptographic).
-///
-/// Bytes are consumed in 32-byte stripes by four 64-bit accumulators with the
-/// multiply–rotate round of xxHash64; the 256-bit state is folded into two 64-bit
-/// lanes by two different mixes, each finished by a full avalanche. The result
-/// depends only on the byte sequence (not on how it was split into update() calls),
-/// on this machine's byte order (little-endian), and on nothing else. Load time only.
+/// A 128-bit content hash for cache keys and file checksums (not cryptographic): XXH3-128
+/// (libxxhash) with seed 0, streamed. The result depends only on the byte sequence (not on
+/// how it was split into update() calls), on this machine's byte order (little-endian),
+/// and on nothing else. Load time only: the hash state is allocated.
 
-#include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <type_traits>
+
+struct XXH3_state_s;  // xxhash.h
 
 namespace voxhap {
 
@@ -28,6 +27,10 @@ struct Digest128 {
 class ContentHash {
 public:
   ContentHash();
+  ~ContentHash();
+  /// Takes `other`'s state; `other` may then only be destroyed or assigned to.
+  ContentHash(ContentHash&& other) noexcept;
+  ContentHash& operator=(ContentHash&&) noexcept;
 
   /// Appends `bytes` bytes at `data` to the hashed sequence.
   void update(const void* data, std::size_t bytes);
@@ -52,12 +55,10 @@ public:
   Digest128 digest() const;
 
 private:
-  void stripe(const unsigned char* bytes32);
-
-  std::array<std::uint64_t, 4> acc_;
-  std::array<unsigned char, 32> pending_{};
-  std::size_t pendingBytes_ = 0;
-  std::uint64_t totalBytes_ = 0;
+  struct FreeState {
+    void operator()(XXH3_state_s* state) const noexcept;
+  };
+  std::unique_ptr<XXH3_state_s, FreeState> state_;
 };
 
 }  // namespace voxhap

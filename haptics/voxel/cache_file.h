@@ -28,7 +28,8 @@
 namespace voxhap {
 
 /// Bump whenever what a cache file holds, or how it is made, changes.
-inline constexpr std::uint32_t kCacheFormatVersion = 1;
+/// 2: keys and checksums are XXH3-128 (ContentHash).
+inline constexpr std::uint32_t kCacheFormatVersion = 2;
 
 /// What a cache file holds.
 enum class CacheKind : std::uint32_t { Voxmap = 1, Pointshell = 2 };

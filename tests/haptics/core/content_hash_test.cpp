@@ -53,6 +53,20 @@ TEST(ContentHash, EveryFlippedBitAndEveryLengthGivesADifferentDigest) {
   EXPECT_NE(hashOf(std::vector<unsigned char>(64, 0)), hashOf(std::vector<unsigned char>(65, 0)));
 }
 
+TEST(ContentHash, IsXxh3OneTwentyEight) {
+  // the published XXH3-128 of no bytes (seed 0), from the xxHash reference
+  EXPECT_EQ(ContentHash().digest().hex(), "99aa06d3014798d86001c324468d497f");
+}
+
+TEST(ContentHash, AMovedHashGoesOnWhereItWas) {
+  const std::vector<unsigned char> bytes = randomBytes(100, 3);
+  ContentHash h;
+  h.update(bytes.data(), 40);
+  ContentHash moved(std::move(h));
+  moved.update(bytes.data() + 40, 60);
+  EXPECT_EQ(moved.digest(), hashOf(bytes));
+}
+
 TEST(ContentHash, HexIsThirtyTwoDigitsHighLaneFirst) {
   const Digest128 d{0x0123456789abcdefull, 0xfedcba9876543210ull};
   EXPECT_EQ(d.hex(), "fedcba98765432100123456789abcdef");
