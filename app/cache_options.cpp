@@ -4,7 +4,8 @@
 
 namespace voxhap::cli {
 
-const OptionSpec kCacheDirOption{"cache-dir", 0, "DIR", "voxel cache folder (default ~/.cache/voxhap/voxels)"};
+const OptionSpec kCacheDirOption{"cache-dir", 0, "DIR",
+                                 "voxel cache folder (default ~/.cache/voxhap/voxels)"};
 const OptionSpec kNoCacheOption{"no-cache", 0, "", "build voxels afresh; neither read nor write the cache"};
 
 CacheOptions voxelCacheOptions(const ParsedArgs& args) {
@@ -14,8 +15,8 @@ CacheOptions voxelCacheOptions(const ParsedArgs& args) {
 
 void useVoxelCache(SceneModelOptions& options, const CacheOptions& cache, Console& console) {
   Console* warnings = &console;
-  options.voxelizeFn = [cache, warnings](std::span<const SceneObject* const> objects, const VoxelizeOptions& o,
-                                         const ProgressFn& progress) {
+  options.voxelizeFn = [cache, warnings](std::span<const SceneObject* const> objects,
+                                         const VoxelizeOptions& o, const ProgressFn& progress) {
     CachedVoxelization v = voxelizeCached(objects, o, cache, progress);
     for (const std::string& w : v.warnings) warnings->warning(w);
     return std::move(v.voxelized.voxmap);

@@ -67,7 +67,8 @@ ExtractionResult runExtraction(const Scene& scene, const MotionScript& script,
   const ObjectSelection selection = selectObjects(scene, moving);  // an object, or a group merged
   const SceneObject* actuator = selection.picked[0];
 
-  BuiltScene built = buildScene(scene, moving, options.model, console.progress(options.label + ": preparing voxels"));
+  BuiltScene built =
+      buildScene(scene, moving, options.model, console.progress(options.label + ": preparing voxels"));
   const SimModel& model = built.model;
   if (!model.staticVoxmap)
     throw Error(scene.sourceName + ": nothing static to extract " + options.moving + " from");

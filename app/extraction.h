@@ -46,16 +46,16 @@ struct ExtractionOptions {
       kPenetrationEveryFrames;  ///< measure the exact penetration every N frames (≥ 1)
   /// Probe spacing of the exact penetration, m; 0: the static voxel size / kProbesPerVoxel.
   double probeSpacingM = 0.0;
-  std::string label = "extraction";    ///< progress bar label prefix
+  std::string label = "extraction";  ///< progress bar label prefix
 };
 
 /// What one extraction run measured.
 struct ExtractionResult {
   FrameStats stats;
-  std::uint64_t points = 0;           ///< the actuator's pointshell
-  double durationS = 0.0;             ///< simulated, s
-  double wallS = 0.0;                 ///< building the model (cache loads) and running the frames, s
-  double framesWallS = 0.0;           ///< the frame loop with its measurements, s
+  std::uint64_t points = 0;  ///< the actuator's pointshell
+  double durationS = 0.0;    ///< simulated, s
+  double wallS = 0.0;        ///< building the model (cache loads) and running the frames, s
+  double framesWallS = 0.0;  ///< the frame loop with its measurements, s
   // ground truth
   ExactCheckSummary exact;          ///< the exact penetration checks (one pair: actuator / static)
   std::uint64_t probesChecked = 0;  ///< probes on the actuator's surface

@@ -1,8 +1,8 @@
-#include <unistd.h>
-
 #include <iostream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "app/cli/command.h"
 

@@ -1,13 +1,13 @@
 #include "app/png_writer.h"
 
-#include <png.h>
-#include <unistd.h>
-
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
 #include <string>
+
+#include <png.h>
+#include <unistd.h>
 
 #include "haptics/core/error.h"
 
@@ -55,13 +55,15 @@ RgbImage::RgbImage(int widthPx, int heightPx, std::uint8_t r, std::uint8_t g, st
 }
 
 void RgbImage::set(int x, int y, const std::uint8_t (&colour)[3]) {
-  const std::size_t at = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
+  const std::size_t at =
+      (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
   std::memcpy(&rgb[at], colour, 3);
 }
 
 void writePng(const std::filesystem::path& file, const RgbImage& image) {
   if (image.width <= 0 || image.height <= 0 ||
-      image.rgb.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3) {
+      image.rgb.size() !=
+          static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3) {
     throw Error(file.string() + ": no image to write");
   }
   std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));

@@ -16,10 +16,11 @@
 namespace voxhap::cli {
 
 const OptionSpec kCapacityOption{"capacity", 0, "N", "point tests per frame (default: measured online)"};
-const OptionSpec kVoxelMemoryOption{"voxel-memory", 0, "SIZE",
-                                    "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache"};
-const OptionSpec kBruteForceOption{"brute-force", 0, "",
-                                   "test every point every frame (no time-critical sampling), for comparison"};
+const OptionSpec kVoxelMemoryOption{
+    "voxel-memory", 0, "SIZE",
+    "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache"};
+const OptionSpec kBruteForceOption{
+    "brute-force", 0, "", "test every point every frame (no time-critical sampling), for comparison"};
 const OptionSpec kDeviceProfileOption{"device-profile", 0, "NAME",
                                       "the device's force, torque and stiffness limits, one of: " +
                                           deviceProfileNames() + " (default scripted)"};
@@ -63,11 +64,13 @@ SceneModelOptions sceneModelOptionsFromArgs(const ParsedArgs& args, Console& con
     const std::uint64_t budget = parseBytes(*memory, "voxel-memory");
     Console* warnings = &console;
     options.budgetedVoxelizeFn = [cache, budget, warnings](std::span<const SceneObject* const> objects,
-                                                           const VoxelizeOptions& o, const ProgressFn& progress) {
+                                                           const VoxelizeOptions& o,
+                                                           const ProgressFn& progress) {
       BudgetedVoxmap v = voxelizeWithinBudget(objects, o, cache, budget, progress);
       for (const std::string& w : v.warnings) warnings->warning(w);
       if (v.pager) {
-        warnings->note("static voxels: " + std::to_string(v.wordBytes >> 20) + " MiB of words paged through " +
+        warnings->note("static voxels: " + std::to_string(v.wordBytes >> 20) +
+                       " MiB of words paged through " +
                        std::to_string((v.pager->slotCount() * v.voxmap.pagedArrays().blockBytes) >> 20) +
                        " MiB of memory");
       }
@@ -144,8 +147,10 @@ void runFrames(LocalSimulation& sim, std::span<HapticDevice* const> devices, std
   stats.computeUs.reserve(stats.computeUs.size() + frames);
   for (std::uint64_t f = 0; f < frames; ++f) {
     if (sim.stepWithDevices(devices) & kFrameStopped) {
-      throw Error("stopped at " + std::to_string(sim.state.timeS) + " s: the voxels the frame needed were not read "
-                  "from the cache file within " + std::to_string(static_cast<int>(kMaxSuspensionS)) +
+      throw Error("stopped at " + std::to_string(sim.state.timeS) +
+                  " s: the voxels the frame needed were not read "
+                  "from the cache file within " +
+                  std::to_string(static_cast<int>(kMaxSuspensionS)) +
                   " s (paper §5.3); allow more --voxel-memory or use a faster disk");
     }
     const double us = sim.lastStepS * 1e6;
@@ -183,13 +188,13 @@ void printFrameStats(std::ostream& out, const FrameStats& stats, bool coherence)
   out << "frames          " << stats.frames() << "\nmax contacts    " << stats.maxContacts
       << "\nmean contacts   " << stats.meanContacts() << "\nmax force       " << stats.maxForceN
       << " N\nmean tests      " << stats.meanTested() << " per frame ("
-      << (coherence ? "time-critical" : "brute force") << "; " << stats.meanDrifted() << " of them drifting), "
-      << stats.meanChunkTests() << " chunk tests\nMaxTravel       " << stats.meanTravelScale()
-      << " of its bound on average\nmissed deadlines " << stats.counters.missedDeadlines << "\nover 1 ms        "
-      << stats.framesOverBudget << " frames\ndepth limited   " << stats.counters.depthLimitedFrames
-      << " frames\nsuspensions     " << stats.suspensions.count << " (" << stats.suspensions.frames
-      << " frames, longest " << stats.suspensions.longestS << " s)\ncompute         p50 "
-      << stats.computePercentileUs(0.5)
+      << (coherence ? "time-critical" : "brute force") << "; " << stats.meanDrifted()
+      << " of them drifting), " << stats.meanChunkTests() << " chunk tests\nMaxTravel       "
+      << stats.meanTravelScale() << " of its bound on average\nmissed deadlines "
+      << stats.counters.missedDeadlines << "\nover 1 ms        " << stats.framesOverBudget
+      << " frames\ndepth limited   " << stats.counters.depthLimitedFrames << " frames\nsuspensions     "
+      << stats.suspensions.count << " (" << stats.suspensions.frames << " frames, longest "
+      << stats.suspensions.longestS << " s)\ncompute         p50 " << stats.computePercentileUs(0.5)
       << " us, p99 " << stats.computePercentileUs(0.99) << " us, max " << stats.computeMaxUs() << " us\n";
 }
 

@@ -15,16 +15,16 @@
 #include "app/cli/args.h"
 #include "app/cli/console.h"
 #include "haptics/device/scripted_device.h"
-#include "haptics/sim/scene_model.h"
 #include "haptics/sim/local_simulation.h"
+#include "haptics/sim/scene_model.h"
 
 namespace voxhap::cli {
 
 /// Options of time-critical sampling and paging, read by sceneModelOptionsFromArgs.
-extern const OptionSpec kCapacityOption;      ///< --capacity N
-extern const OptionSpec kVoxelMemoryOption;   ///< --voxel-memory SIZE
-extern const OptionSpec kBruteForceOption;    ///< --brute-force
-extern const OptionSpec kNoDriftingOption;    ///< --no-drifting
+extern const OptionSpec kCapacityOption;       ///< --capacity N
+extern const OptionSpec kVoxelMemoryOption;    ///< --voxel-memory SIZE
+extern const OptionSpec kBruteForceOption;     ///< --brute-force
+extern const OptionSpec kNoDriftingOption;     ///< --no-drifting
 extern const OptionSpec kDeviceProfileOption;  ///< --device-profile NAME
 
 /// SceneModelOptions from the options a command declares (any it does not declare are
@@ -80,9 +80,9 @@ void runFrames(LocalSimulation& sim, std::span<HapticDevice* const> devices, std
                FrameStats& stats, const ProgressFn& progress, const AfterFrameFn& afterFrame = {});
 
 /// The summary keys `voxhap simulate --json` prints: frames, max_contacts, mean_contacts,
-/// max_force_n, mean_tested, mean_drifted, mean_chunk_tests, mean_travel_scale, missed_deadlines, frames_over_budget,
-/// pairs_skipped, suspensions, suspended_frames, longest_suspension_s, travel_limited_frames,
-/// depth_limited_frames, compute_us {p50, p99, max}.
+/// max_force_n, mean_tested, mean_drifted, mean_chunk_tests, mean_travel_scale, missed_deadlines,
+/// frames_over_budget, pairs_skipped, suspensions, suspended_frames, longest_suspension_s,
+/// travel_limited_frames, depth_limited_frames, compute_us {p50, p99, max}.
 nlohmann::ordered_json frameStatsJson(const FrameStats& stats);
 
 /// The same summary as aligned text lines.

@@ -32,7 +32,8 @@ void colourOf(std::uint8_t value, int range, std::uint8_t (&out)[3]) {
   const std::uint8_t* c = value == kValueFar ? kFar : value == kValueInterior ? kInterior : kFeature;
   if (value > kValueFeature) {
     const double t = range > 1 ? std::min(1.0, double(value - kValueFeature - 1) / double(range - 1)) : 0.0;
-    for (int k = 0; k < 3; ++k) out[k] = static_cast<std::uint8_t>(std::lround(kNear[k] + t * (kFarthest[k] - kNear[k])));
+    for (int k = 0; k < 3; ++k)
+      out[k] = static_cast<std::uint8_t>(std::lround(kNear[k] + t * (kFarthest[k] - kNear[k])));
     return;
   }
   std::copy(c, c + 3, out);
@@ -44,7 +45,8 @@ SliceSpec parseSlice(const std::string& text) {
   const std::size_t equals = text.find('=');
   const std::string axis = text.substr(0, equals);
   if (equals == std::string::npos || (axis != "x" && axis != "y" && axis != "z")) {
-    throw UsageError("--slice wants AXIS=COORDINATE such as z=0.012 or x=-3mm (axis x, y or z), not '" + text + "'");
+    throw UsageError("--slice wants AXIS=COORDINATE such as z=0.012 or x=-3mm (axis x, y or z), not '" +
+                     text + "'");
   }
   return {axis[0] - 'x', parseLengthM(text.substr(equals + 1), "slice", LengthSign::Any)};
 }
@@ -57,8 +59,10 @@ SliceLayout sliceLayout(const Voxmap& voxmap, const SliceSpec& slice) {
   const double layer = std::floor((slice.coordinateM - fromM) / grid.voxelSizeM);
   if (!(layer >= 0.0 && layer < dims[slice.axis])) {
     std::ostringstream s;
-    s << "--slice " << "xyz"[slice.axis] << "=" << slice.coordinateM << " misses the voxel grid, which spans "
-      << fromM << " … " << toM << " m along " << "xyz"[slice.axis];
+    s << "--slice "
+      << "xyz"[slice.axis] << "=" << slice.coordinateM << " misses the voxel grid, which spans " << fromM
+      << " … " << toM << " m along "
+      << "xyz"[slice.axis];
     throw UsageError(s.str());
   }
   const auto [right, up] = planeAxes(slice.axis);

@@ -26,7 +26,7 @@ struct SliceLayout {
   int widthVoxels = 0;   ///< voxels across one panel (the first other axis)
   int heightVoxels = 0;  ///< voxels up one panel (the second other axis)
   int pixelsPerVoxel = 1;
-  int gapPx = 0;         ///< between panels
+  int gapPx = 0;  ///< between panels
 };
 
 /// The layout of a slice through `voxmap`; throws UsageError naming the grid's extent

@@ -4,8 +4,10 @@
 # run installs nothing and rebuilds only what changed.
 #
 #   bash tools/setup.sh demo [ARGS…]   build (Release) and run `voxhap demo ARGS…`
-#   bash tools/setup.sh test           build and run every test in Release, then
-#                                      again under AddressSanitizer + UBSan
+#   bash tools/setup.sh test           check every source's formatting, build and run
+#                                      every test in Release, then again under
+#                                      AddressSanitizer + UBSan
+#   bash tools/setup.sh format         clang-format every source in place
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -13,7 +15,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libtinygltf-dev nlohmann-json3-dev libembree-dev libopenmesh-dev
   libglfw3-dev libgl-dev libhidapi-dev libusb-1.0-0-dev libpng-dev libxxhash-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev clang-format
   xvfb xauth libgl1-mesa-dri
 )
 
@@ -44,6 +46,28 @@ install_missing() {
   as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# every C++ source of the project (tracked files in a clone, else all under the source dirs)
+sources() {
+  if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+    git ls-files -- '*.cpp' '*.h'
+  else
+    find app haptics net render tests -name '*.cpp' -o -name '*.h'
+  fi
+}
+
+# fails, naming the files, when one is not as .clang-format writes it
+check_format() {
+  local bad=()
+  while IFS= read -r f; do
+    clang-format --dry-run -Werror "$f" >/dev/null 2>&1 || bad+=("$f")
+  done < <(sources)
+  if [ ${#bad[@]} -gt 0 ]; then
+    say "not formatted (run: bash tools/setup.sh format): ${bad[*]}"
+    exit 1
+  fi
+  say "every source formatted"
+}
+
 # configure once per preset; later builds re-run CMake by themselves when needed
 build() {
   local preset=$1
@@ -60,8 +84,14 @@ case "${1:-}" in
     build release
     exec build/release/app/voxhap demo "$@"
     ;;
+  format)
+    install_missing
+    sources | xargs clang-format -i
+    say "formatted every source"
+    ;;
   test)
     install_missing
+    check_format
     build release
     ctest --preset release
     build asan
@@ -69,7 +99,7 @@ case "${1:-}" in
     say "all tests passed (Release and ASan+UBSan)"
     ;;
   *)
-    echo "usage: bash tools/setup.sh demo [ARGS...] | test" >&2
+    echo "usage: bash tools/setup.sh demo [ARGS...] | test | format" >&2
     exit 2
     ;;
 esac

@@ -46,7 +46,8 @@ TriangleMesh posedMesh(const SceneObject& object, const Pose& pose) {
   TriangleMesh out;
   for (const Part& part : object.parts) {
     const auto base = static_cast<std::uint32_t>(out.positionsWorld.size());
-    for (const glm::vec3& p : part.mesh.positionsWorld) out.positionsWorld.push_back(glm::vec3(apply(pose, glm::dvec3(p))));
+    for (const glm::vec3& p : part.mesh.positionsWorld)
+      out.positionsWorld.push_back(glm::vec3(apply(pose, glm::dvec3(p))));
     for (const glm::uvec3& t : part.mesh.triangles) out.triangles.push_back(t + glm::uvec3(base));
   }
   return out;

@@ -22,8 +22,9 @@ std::string exactNumber(double value) {
   char buffer[400];  // room for any double in fixed notation
   const double magnitude = std::fabs(value);
   const bool plain = std::isfinite(value) && magnitude >= 1e-6 && magnitude < 1e15;
-  const auto [end, ec] = plain ? std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed)
-                               : std::to_chars(buffer, buffer + sizeof buffer, value);
+  const auto [end, ec] = plain
+                             ? std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed)
+                             : std::to_chars(buffer, buffer + sizeof buffer, value);
   assert(ec == std::errc());
   return std::string(buffer, end);
 }

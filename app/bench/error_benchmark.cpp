@@ -35,8 +35,8 @@
 #include "haptics/geometry/embree_scene.h"
 #include "haptics/geometry/mesh_builder.h"
 #include "haptics/scene/builtin/builtin_scenes.h"
-#include "haptics/sim/scene_model.h"
 #include "haptics/sim/local_simulation.h"
+#include "haptics/sim/scene_model.h"
 #include "haptics/voxel/voxel_encoding.h"
 
 namespace voxhap::cli {
@@ -86,7 +86,9 @@ Scene boxOnPlane(double voxelM) {
 }
 
 /// Height of the lower rod's top edge: square rods turned 45° about their axes.
-double rodEdgeM() { return kRodHalfM * std::numbers::sqrt2; }
+double rodEdgeM() {
+  return kRodHalfM * std::numbers::sqrt2;
+}
 
 Scene crossedRods(double voxelM) {
   Scene scene;
@@ -143,8 +145,8 @@ std::vector<BenchColumn> errorColumns() {
 /// inside `near` only.
 std::vector<glm::dvec3> meshSamples(const TriangleMesh& mesh, const Bounds& near) {
   auto inside = [&near](const glm::dvec3& p) {
-    return p.x >= near.min.x && p.y >= near.min.y && p.z >= near.min.z && p.x <= near.max.x && p.y <= near.max.y &&
-           p.z <= near.max.z;
+    return p.x >= near.min.x && p.y >= near.min.y && p.z >= near.min.z && p.x <= near.max.x &&
+           p.y <= near.max.y && p.z <= near.max.z;
   };
   std::vector<glm::dvec3> samples;
   for (const glm::vec3& v : mesh.positionsWorld) {
@@ -227,8 +229,8 @@ HandleInput rodHandleAt(double tS, double startGapM) {
   return h;
 }
 
-void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, double voxelM, int bits, bool aware,
-                  bool coherent, BenchTable& table) {
+void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, double voxelM, int bits,
+                  bool aware, bool coherent, BenchTable& table) {
   model.coherence.enabled = coherent;
   LocalSimulation sim(model);
   const SimState& state = sim.state;
@@ -268,7 +270,8 @@ void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, dou
 }
 
 template <typename T, typename Parse>
-std::vector<T> listOption(const ParsedArgs& args, const std::string& name, std::vector<T> byDefault, Parse parse) {
+std::vector<T> listOption(const ParsedArgs& args, const std::string& name, std::vector<T> byDefault,
+                          Parse parse) {
   const std::vector<std::string> given = args.values(name);
   if (given.empty()) return byDefault;
   std::vector<T> out;
@@ -277,19 +280,22 @@ std::vector<T> listOption(const ParsedArgs& args, const std::string& name, std::
 }
 
 BenchTable runError(const BenchContext& c) {
-  if (!c.args.positionals.empty()) throw UsageError("error takes no arguments, got '" + c.args.positionals[0] + "'");
+  if (!c.args.positionals.empty())
+    throw UsageError("error takes no arguments, got '" + c.args.positionals[0] + "'");
   const bool quick = c.args.has("quick");
-  std::vector<double> sizes = listOption<double>(c.args, "voxel-size", {std::begin(kDefaultSizesM), std::end(kDefaultSizesM)},
-                                                 [](const std::string& s) { return parseLengthM(s, "voxel-size"); });
-  std::vector<int> bitWidths = listOption<int>(c.args, "bits", {std::begin(kDefaultBits), std::end(kDefaultBits)},
-                                               [](const std::string& s) {
-                                                 const auto b = parseUnsigned(s, "bits");
-                                                 if (b != 2 && b != 4 && b != 8) throw UsageError("--bits wants 2, 4 or 8, got " + s);
-                                                 return static_cast<int>(b);
-                                               });
+  std::vector<double> sizes =
+      listOption<double>(c.args, "voxel-size", {std::begin(kDefaultSizesM), std::end(kDefaultSizesM)},
+                         [](const std::string& s) { return parseLengthM(s, "voxel-size"); });
+  std::vector<int> bitWidths = listOption<int>(
+      c.args, "bits", {std::begin(kDefaultBits), std::end(kDefaultBits)}, [](const std::string& s) {
+        const auto b = parseUnsigned(s, "bits");
+        if (b != 2 && b != 4 && b != 8) throw UsageError("--bits wants 2, 4 or 8, got " + s);
+        return static_cast<int>(b);
+      });
   const std::vector<std::string> sceneNames = c.args.values("scene");
   for (const std::string& name : sceneNames) {
-    if (std::none_of(errorScenes().begin(), errorScenes().end(), [&](const ErrorScene& e) { return name == e.name; })) {
+    if (std::none_of(errorScenes().begin(), errorScenes().end(),
+                     [&](const ErrorScene& e) { return name == e.name; })) {
       throw UsageError("--scene: no scene '" + name +
                        "' (sphere-on-plane, box-on-plane, ball-and-socket, peg-in-hole, crossed-rods)");
     }
@@ -324,7 +330,8 @@ BenchTable runError(const BenchContext& c) {
     for (const double voxelM : sizes) {
       const Scene scene = es->build(voxelM);
       if (voxelM == sizes.front() && std::string(es->name) == "ball-and-socket") {
-        table.extra["ball_seat_gap_m"] = signedGapM(scene, *scene.find(es->moving), Pose{glm::dvec3(0.0), identityQuat()});
+        table.extra["ball_seat_gap_m"] =
+            signedGapM(scene, *scene.find(es->moving), Pose{glm::dvec3(0.0), identityQuat()});
       }
       for (const int bits : bitWidths) {
         for (const bool aware : awareness) {
@@ -340,7 +347,8 @@ BenchTable runError(const BenchContext& c) {
           useVoxelCache(options, cache, c.console);
           SimModel model = buildSceneModel(scene, {es->moving}, options);
           model.objects[0].coupled = es->held;
-          for (const bool coherent : {true, false}) measureModel(*es, scene, model, voxelM, bits, aware, coherent, table);
+          for (const bool coherent : {true, false})
+            measureModel(*es, scene, model, voxelM, bits, aware, coherent, table);
           if (progress) progress(static_cast<double>(++done) / static_cast<double>(total));
         }
       }
@@ -356,8 +364,9 @@ Benchmark errorBenchmark() {
   Benchmark b;
   b.name = "error";
   b.summary = "Time against error: gap and force direction at rest in the analytic scenes.";
-  b.usage = "[--quick] [--scene NAME …] [--voxel-size LENGTH …] [--bits 2|4|8 …] [--capacity N]\n"
-            "       [--cache-dir DIR] [--no-cache]";
+  b.usage =
+      "[--quick] [--scene NAME …] [--voxel-size LENGTH …] [--bits 2|4|8 …] [--capacity N]\n"
+      "       [--cache-dir DIR] [--no-cache]";
   b.description =
       "Sphere on plane, box on plane, ball in socket (built-in, ball seated, points half a\n"
       "voxel inward), peg in hole (built-in, 0.2 mm clearance, the peg dropped from 1 mm above\n"

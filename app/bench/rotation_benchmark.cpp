@@ -23,9 +23,9 @@
 #include "app/bench/analytic_scenes.h"
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
-#include "app/sim_run.h"
 #include "app/cli/number_format.h"
 #include "app/scene_source.h"
+#include "app/sim_run.h"
 #include "haptics/core/error.h"
 #include "haptics/sim/local_simulation.h"
 
@@ -113,7 +113,8 @@ void measureRow(const Scene& scene, double voxelM, const BenchContext& c, const 
     sumContacts += sim.object(0).contacts;
     sumTested += sim.outputs.coherence.tested;
     sumScale += sim.outputs.coherence.travelScale;
-    if (progress && computeUs.size() % 100 == 0) progress(std::clamp(turnedRad / (2.0 * std::numbers::pi), 0.0, 1.0));
+    if (progress && computeUs.size() % 100 == 0)
+      progress(std::clamp(turnedRad / (2.0 * std::numbers::pi), 0.0, 1.0));
   }
   if (progress) progress(1.0);
 
@@ -132,13 +133,15 @@ void measureRow(const Scene& scene, double voxelM, const BenchContext& c, const 
   table.set(r, "compute_p50_us", percentile(computeUs, 0.5));
   table.set(r, "compute_p99_us", percentile(computeUs, 0.99));
   table.set(r, "turned_rad", turnedRad);
-  c.console.note(label + ": " + (turnedRad >= 2.0 * std::numbers::pi ? "turned once in " + fixed(realTimeS, 3) + " s"
-                                                                         : "gave up after " + fixed(frames * model.dtS, 1) +
-                                                                               " s at " + fixed(turnedRad, 2) + " rad"));
+  c.console.note(label + ": " +
+                 (turnedRad >= 2.0 * std::numbers::pi ? "turned once in " + fixed(realTimeS, 3) + " s"
+                                                      : "gave up after " + fixed(frames * model.dtS, 1) +
+                                                            " s at " + fixed(turnedRad, 2) + " rad"));
 }
 
 BenchTable runRotation(const BenchContext& c) {
-  if (!c.args.positionals.empty()) throw UsageError("rotation takes no arguments, got '" + c.args.positionals[0] + "'");
+  if (!c.args.positionals.empty())
+    throw UsageError("rotation takes no arguments, got '" + c.args.positionals[0] + "'");
   const std::vector<double> sizes = voxelSizes(c.args);
   if (const auto capacity = c.args.value("capacity"); capacity && parseUnsigned(*capacity, "capacity") < 1) {
     throw UsageError("--capacity wants at least one point test");

@@ -30,11 +30,11 @@
 #include "app/bench/analytic_scenes.h"
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
-#include "app/sim_run.h"
 #include "app/cli/number_format.h"
+#include "app/sim_run.h"
 #include "haptics/core/error.h"
-#include "haptics/sim/scene_model.h"
 #include "haptics/sim/local_simulation.h"
+#include "haptics/sim/scene_model.h"
 
 namespace voxhap::cli {
 namespace {
@@ -68,7 +68,9 @@ double tileAreaM2() {
 
 /// The point spacing that gives about `points` points on the tile: one point per
 /// spacing² of its area (its faces lie off voxel boundaries), a little more at edges.
-double spacingFor(std::uint64_t points) { return std::sqrt(tileAreaM2() / static_cast<double>(points)); }
+double spacingFor(std::uint64_t points) {
+  return std::sqrt(tileAreaM2() / static_cast<double>(points));
+}
 
 std::vector<BenchColumn> scalingColumns() {
   return {
@@ -132,7 +134,8 @@ HandleInput handleAt(double tS) {
   const Pose before = handlePoseAt(tS - h), after = handlePoseAt(tS + h);
   HandleInput input{handlePoseAt(tS), {}};
   input.velocity.linearWorld = (after.position - before.position) / (2.0 * h);
-  input.velocity.angularWorld = rotationVector(after.orientation * glm::conjugate(before.orientation)) / (2.0 * h);
+  input.velocity.angularWorld =
+      rotationVector(after.orientation * glm::conjugate(before.orientation)) / (2.0 * h);
   return input;
 }
 
@@ -142,8 +145,9 @@ double microsecondsOfStep(LocalSimulation& sim, const HandleInput& handle) {
   return sim.lastStepS * 1e6;
 }
 
-void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVoxelM, double seconds, bool quick,
-                const BenchContext& c, const CacheOptions& cache, BenchTable& table, const std::string& label) {
+void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVoxelM, double seconds,
+                bool quick, const BenchContext& c, const CacheOptions& cache, BenchTable& table,
+                const std::string& label) {
   const double spacingM = spacingFor(targetPoints);
   SceneModelOptions options;
   options.staticVoxelSizeM = staticVoxelM > 0.0 ? staticVoxelM : spacingM;
@@ -185,8 +189,8 @@ void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVox
   model.coherence.enabled = false;
   const double bruteTests = quick ? kQuickBruteTests : kBruteTests;
   const std::uint64_t bruteFrames = std::clamp<std::uint64_t>(
-      static_cast<std::uint64_t>(bruteTests / static_cast<double>(std::max<std::size_t>(points, 1))), kBruteMinFrames,
-      std::min(kBruteMaxFrames, frames));
+      static_cast<std::uint64_t>(bruteTests / static_cast<double>(std::max<std::size_t>(points, 1))),
+      kBruteMinFrames, std::min(kBruteMaxFrames, frames));
   LocalSimulation brute(model);
   std::vector<double> bruteUs;
   bruteUs.reserve(bruteFrames);
@@ -223,7 +227,8 @@ void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVox
 }
 
 BenchTable runScaling(const BenchContext& c) {
-  if (!c.args.positionals.empty()) throw UsageError("scaling takes no arguments, got '" + c.args.positionals[0] + "'");
+  if (!c.args.positionals.empty())
+    throw UsageError("scaling takes no arguments, got '" + c.args.positionals[0] + "'");
   const bool quick = c.args.has("quick");
   const std::vector<std::uint64_t> counts = pointCounts(c.args);
   if (const auto capacity = c.args.value("capacity"); capacity && parseUnsigned(*capacity, "capacity") < 1) {
@@ -260,8 +265,9 @@ Benchmark scalingBenchmark() {
   Benchmark b;
   b.name = "scaling";
   b.summary = "Frame time against pointshell size, 10^4 to 10^7 points, coherent and brute force.";
-  b.usage = "[--quick] [--points N …] [--static-voxel-size LENGTH] [--seconds S] [--capacity N]\n"
-            "       [--cache-dir DIR] [--no-cache]";
+  b.usage =
+      "[--quick] [--points N …] [--static-voxel-size LENGTH] [--seconds S] [--capacity N]\n"
+      "       [--cache-dir DIR] [--no-cache]";
   b.description =
       "A tile (80 x 80 x 8 mm) pressed 0.5 mm into a plate by its handle slides along a\n"
       "Lissajous curve (+-15 mm, +-10 mm) and rocks +-2 degrees about x and y, standing on\n"

@@ -83,7 +83,8 @@ std::uint64_t parseUnsigned(const std::string& text, const std::string& optionNa
 
 std::uint64_t parseBytes(const std::string& text, const std::string& optionName) {
   auto fail = [&]() -> std::uint64_t {
-    throw UsageError("--" + optionName + " wants a size such as 2GiB, 512MiB or 65536 (bytes), not '" + text + "'");
+    throw UsageError("--" + optionName + " wants a size such as 2GiB, 512MiB or 65536 (bytes), not '" + text +
+                     "'");
   };
   double value = 0.0;
   const char* end = text.data() + text.size();
@@ -102,8 +103,8 @@ std::uint64_t parseBytes(const std::string& text, const std::string& optionName)
 }
 
 double parseLengthM(const std::string& text, const std::string& optionName, LengthSign sign) {
-  const std::string example = sign == LengthSign::Positive ? "0.35mm, 2.5 mm or 0.00035 (metres)"
-                                                           : "0.012, 12mm or -3.5 mm";
+  const std::string example =
+      sign == LengthSign::Positive ? "0.35mm, 2.5 mm or 0.00035 (metres)" : "0.012, 12mm or -3.5 mm";
   auto fail = [&](const std::string& why) -> double {
     throw UsageError("--" + optionName + " wants " + why + " such as " + example + ", not '" + text + "'");
   };

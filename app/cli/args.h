@@ -64,6 +64,7 @@ enum class LengthSign { Positive, Any };
 /// optionally followed (spaces allowed) by "mm" or "m"; no unit means metres. So
 /// "0.35mm", "2.5 mm", "0.00035m" and "0.00035" are all accepted. Throws UsageError
 /// on anything else, on NaN or infinity, and on a length ≤ 0 unless `sign` is Any.
-double parseLengthM(const std::string& text, const std::string& optionName, LengthSign sign = LengthSign::Positive);
+double parseLengthM(const std::string& text, const std::string& optionName,
+                    LengthSign sign = LengthSign::Positive);
 
 }  // namespace voxhap::cli

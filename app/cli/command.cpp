@@ -33,8 +33,8 @@ std::string helpText(const Command& command, const std::string& path) {
         << sub.summary << "\n";
     }
     std::string placeholder = command.subcommandNoun == "command" ? "COMMAND" : "NAME";
-    s << "\nRun '" << path << " " << placeholder << " --help' for the options of one " << command.subcommandNoun
-      << ".\n";
+    s << "\nRun '" << path << " " << placeholder << " --help' for the options of one "
+      << command.subcommandNoun << ".\n";
   }
   std::vector<OptionSpec> options = command.options;
   options.insert(options.end(), commonOptions().begin(), commonOptions().end());
@@ -88,8 +88,7 @@ int dispatch(const Command& command, const std::string& path, std::vector<std::s
 Command voxhapCommands() {
   Command root;
   root.name = "voxhap";
-  root.summary =
-      "Voxhap: collaborative voxel-based 6-DOF haptics (Voxmap PointShell) for CAD assemblies.";
+  root.summary = "Voxhap: collaborative voxel-based 6-DOF haptics (Voxmap PointShell) for CAD assemblies.";
   root.description =
       "Engineers at several sites grab parts of a CAD assembly (glTF) and feel them collide at\n"
       "1 kHz. SCENE arguments are a .gltf/.glb file or a built-in scene name:\n"
@@ -102,8 +101,7 @@ Command voxhapCommands() {
   return root;
 }
 
-int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
-           bool errIsTerminal) {
+int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool errIsTerminal) {
   Console console(err, errIsTerminal);
   try {
     return dispatch(voxhapCommands(), "voxhap", args, out, console);

@@ -41,7 +41,6 @@ Command voxhapCommands();
 
 /// Runs `voxhap` with `args` (without the program name); returns the exit status.
 /// Catches every error at this boundary and prints it as one line on `err`.
-int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
-           bool errIsTerminal);
+int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool errIsTerminal);
 
 }  // namespace voxhap::cli

@@ -12,7 +12,9 @@ void Console::note(const std::string& message) {
   if (verbosity_ == Verbosity::Verbose) err_ << "voxhap: " << message << '\n';
 }
 
-void Console::error(const std::string& message) { err_ << "voxhap: error: " << message << std::endl; }
+void Console::error(const std::string& message) {
+  err_ << "voxhap: error: " << message << std::endl;
+}
 
 ProgressFn Console::progress(const std::string& label) {
   if (!errIsTerminal_ || verbosity_ == Verbosity::Quiet) return {};

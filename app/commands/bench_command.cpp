@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 
 /// Every benchmark `voxhap bench` offers, in the order `--help` lists them.
 std::vector<Benchmark> benchmarks() {
-  return {table1Benchmark(), rotationBenchmark(), extractionBenchmark(), scalingBenchmark(), errorBenchmark()};
+  return {table1Benchmark(), rotationBenchmark(), extractionBenchmark(), scalingBenchmark(),
+          errorBenchmark()};
 }
 
 const OptionSpec kJsonOption{"json", 0, "", "print one JSON document {\"benchmark\", \"rows\", …} on stdout"};

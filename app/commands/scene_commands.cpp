@@ -22,7 +22,8 @@ std::uint64_t seedOf(const ParsedArgs& args) {
 
 const std::string& onePositional(const ParsedArgs& args, const char* what) {
   if (args.positionals.size() != 1) {
-    throw UsageError(std::string("expected one ") + what + ", got " + std::to_string(args.positionals.size()));
+    throw UsageError(std::string("expected one ") + what + ", got " +
+                     std::to_string(args.positionals.size()));
   }
   return args.positionals[0];
 }

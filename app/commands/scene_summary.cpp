@@ -9,7 +9,9 @@
 namespace voxhap::cli {
 namespace {
 
-nlohmann::ordered_json vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+nlohmann::ordered_json vec3Json(const glm::dvec3& v) {
+  return {v.x, v.y, v.z};
+}
 
 nlohmann::ordered_json boundsJson(const Bounds& b) {
   return {{"min", vec3Json(b.min)}, {"max", vec3Json(b.max)}, {"extent", vec3Json(b.extent())}};

@@ -12,8 +12,8 @@
 #include "app/scene_source.h"
 #include "app/sim_run.h"
 #include "haptics/core/error.h"
-#include "haptics/sim/scene_model.h"
 #include "haptics/sim/local_simulation.h"
+#include "haptics/sim/scene_model.h"
 
 namespace voxhap::cli {
 namespace {
@@ -39,8 +39,8 @@ int runSimulate(const CommandContext& c) {
   if (moving.empty()) throw UsageError("name the object to move with --move NAME");
   const std::vector<std::string> scripts = c.args.values("script");
   if (scripts.size() != 1 && scripts.size() != moving.size()) {
-    throw UsageError("give one --script for all moving objects or one per --move (" + std::to_string(moving.size()) +
-                     "), not " + std::to_string(scripts.size()));
+    throw UsageError("give one --script for all moving objects or one per --move (" +
+                     std::to_string(moving.size()) + "), not " + std::to_string(scripts.size()));
   }
   const SceneModelOptions options = sceneModelOptionsFromArgs(c.args, c.console, kDefaultVoxelSizeM);
   std::vector<std::unique_ptr<ScriptedDevice>> devices;
@@ -71,7 +71,8 @@ int runSimulate(const CommandContext& c) {
   if (const auto file = c.args.value("trace")) {
     trace.open(*file);
     if (!trace) throw Error(*file + ": cannot write the trace");
-    trace << "frame,t_s,object,qw,qx,qy,qz,tx,ty,tz,fx,fy,fz,taux,tauy,tauz,contacts,tested,max_travel_m,compute_us\n";
+    trace << "frame,t_s,object,qw,qx,qy,qz,tx,ty,tz,fx,fy,fz,taux,tauy,tauz,contacts,tested,max_travel_m,"
+             "compute_us\n";
   }
 
   std::vector<HapticDevice*> deviceOf(model.objects.size(), nullptr);
@@ -86,12 +87,13 @@ int runSimulate(const CommandContext& c) {
       for (std::size_t i = 0; i < model.objects.size(); ++i) {
         const ObjectFrame& o = sim.object(i);
         const Pose pose = objectPose(model, state, i);
-        trace << state.frame << ',' << state.timeS << ',' << model.objects[i].name << ',' << pose.orientation.w << ','
-              << pose.orientation.x << ',' << pose.orientation.y << ',' << pose.orientation.z << ','
-              << pose.position.x << ',' << pose.position.y << ',' << pose.position.z << ','
-              << o.contactForceWorld.x << ',' << o.contactForceWorld.y << ',' << o.contactForceWorld.z << ','
-              << o.contactTorqueWorld.x << ',' << o.contactTorqueWorld.y << ',' << o.contactTorqueWorld.z << ','
-              << o.contacts << ',' << o.tested << ',' << o.maxTravelM << ',' << us << '\n';
+        trace << state.frame << ',' << state.timeS << ',' << model.objects[i].name << ','
+              << pose.orientation.w << ',' << pose.orientation.x << ',' << pose.orientation.y << ','
+              << pose.orientation.z << ',' << pose.position.x << ',' << pose.position.y << ','
+              << pose.position.z << ',' << o.contactForceWorld.x << ',' << o.contactForceWorld.y << ','
+              << o.contactForceWorld.z << ',' << o.contactTorqueWorld.x << ',' << o.contactTorqueWorld.y
+              << ',' << o.contactTorqueWorld.z << ',' << o.contacts << ',' << o.tested << ',' << o.maxTravelM
+              << ',' << us << '\n';
       }
     }
   };

@@ -1,6 +1,5 @@
-#include <sys/resource.h>
-
 #include <nlohmann/json.hpp>
+#include <sys/resource.h>
 
 #include "app/cache_options.h"
 #include "app/cli/command.h"
@@ -44,7 +43,8 @@ nlohmann::ordered_json resultJson(const std::string& objectName, const VoxelizeO
           {"triangles", s.triangles},
           {"polygons_after_merge", s.polygonsAfterMerge},
           {"points", s.surfaceVoxels},
-          {"points_by_feature", {{"vertex", s.vertexPoints}, {"edge", s.edgePoints}, {"surface", s.surfacePoints}}},
+          {"points_by_feature",
+           {{"vertex", s.vertexPoints}, {"edge", s.edgePoints}, {"surface", s.surfacePoints}}},
           {"voxels",
            {{"interior", s.interiorVoxels},
             {"surface", s.surfaceVoxels},
@@ -77,7 +77,8 @@ void printTable(std::ostream& out, const std::string& objectName, const Voxelize
   row("load", fixed(r.loadS, 2) + " s");
   row("voxmap memory", fixed(static_cast<double>(r.voxelized.voxmap.memoryBytes()) / mib, 1) + " MiB");
   row("peak RSS", fixed(static_cast<double>(peakRssBytes()) / mib, 1) + " MiB");
-  row("cache", std::string(r.cacheHit ? "hit" : "miss") + (r.cacheFile.empty() ? " (disabled)" : ", " + r.cacheFile.string()));
+  row("cache", std::string(r.cacheHit ? "hit" : "miss") +
+                   (r.cacheFile.empty() ? " (disabled)" : ", " + r.cacheFile.string()));
 }
 
 int runVoxelize(const CommandContext& c) {
@@ -90,7 +91,8 @@ int runVoxelize(const CommandContext& c) {
   if (c.args.has("slice")) slice = parseSlice(*c.args.value("slice"));
   const CacheOptions cache = voxelCacheOptions(c.args);
 
-  const std::uint64_t seed = c.args.value("seed") ? parseUnsigned(*c.args.value("seed"), "seed") : kDefaultSeed;
+  const std::uint64_t seed =
+      c.args.value("seed") ? parseUnsigned(*c.args.value("seed"), "seed") : kDefaultSeed;
   const Scene scene = loadScene(c.args.positionals[0], seed, c.console);
   const std::optional<std::string> objectName = c.args.value("object");
   const std::vector<const SceneObject*> objects = objectsToVoxelize(scene, objectName);
@@ -121,9 +123,10 @@ int runVoxelize(const CommandContext& c) {
   } else {
     printTable(c.out, shownName, options, result);
     if (slice) {
-      c.out << "  slice                 " << json["slice"]["png"].get<std::string>() << " (" << "xyz"[slice->axis]
-            << " layer " << json["slice"]["layer"].get<int>() << ", " << json["slice"]["width_px"].get<int>()
-            << " x " << json["slice"]["height_px"].get<int>() << " px: surface, edge, vertex fields)\n";
+      c.out << "  slice                 " << json["slice"]["png"].get<std::string>() << " ("
+            << "xyz"[slice->axis] << " layer " << json["slice"]["layer"].get<int>() << ", "
+            << json["slice"]["width_px"].get<int>() << " x " << json["slice"]["height_px"].get<int>()
+            << " px: surface, edge, vertex fields)\n";
     }
   }
   return kExitOk;

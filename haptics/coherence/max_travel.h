@@ -57,7 +57,9 @@ inline constexpr int kMandatoryQueues = 2;
 
 /// d_i: whole voxels a point of queue `i` (≥ kMandatoryQueues) crosses before it can
 /// reach the force layer.
-inline int voxelsToContact(int i) noexcept { return i - 1; }
+inline int voxelsToContact(int i) noexcept {
+  return i - 1;
+}
 
 /// What Eq. 2 allows this frame, as a fraction of every object's upper bound.
 struct TravelBudget {
@@ -69,7 +71,8 @@ struct TravelBudget {
 /// must be done, and `loadAtFullTravel` = Σ over queues of n_i · (relative travel at scale
 /// 1) / (d_i · s) more are needed to let everything move by its bound
 /// (PairCoherence::load).
-inline TravelBudget travelScale(double capacityTests, double mandatoryTests, double loadAtFullTravel) noexcept {
+inline TravelBudget travelScale(double capacityTests, double mandatoryTests,
+                                double loadAtFullTravel) noexcept {
   if (mandatoryTests >= capacityTests) return {0.0, true};
   if (!(loadAtFullTravel > 0.0)) return {1.0, false};
   const double scale = (capacityTests - mandatoryTests) / loadAtFullTravel;

@@ -72,7 +72,8 @@ void PairCoherence::askAround(VoxelPager* pager, const glm::vec3& voxel, float r
   const auto chunkOf = [](float v) { return static_cast<int>(std::floor(v / kChunkEdgeVoxels)); };
   const glm::vec3 lo = voxel - radiusVoxels;
   const glm::vec3 hi = voxel + radiusVoxels;
-  pager->request({chunkOf(lo.x), chunkOf(lo.y), chunkOf(lo.z)}, {chunkOf(hi.x), chunkOf(hi.y), chunkOf(hi.z)});
+  pager->request({chunkOf(lo.x), chunkOf(lo.y), chunkOf(lo.z)},
+                 {chunkOf(hi.x), chunkOf(hi.y), chunkOf(hi.z)});
 }
 
 void PairCoherence::testChunk(std::uint32_t chunk, int from, int to, const glm::vec3& voxelOfCentroid,
@@ -107,7 +108,9 @@ void PairCoherence::sortAll(const Pointshell& shell, const Voxmap& voxmap, const
     }
     if (pager) {
       const glm::vec3 reach(chunkRadiusVoxels_[c] + kChunkEdgeVoxels);
-      const auto chunkOf = [](const glm::vec3& v) { return glm::ivec3(glm::floor(v / float(kChunkEdgeVoxels))); };
+      const auto chunkOf = [](const glm::vec3& v) {
+        return glm::ivec3(glm::floor(v / float(kChunkEdgeVoxels)));
+      };
       pager->makeResident(chunkOf(centroid - reach), chunkOf(centroid + reach));
     }
     chunks_.queues().move(c, kChunkTestNow, kChunkInRange);
@@ -209,8 +212,8 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
       const std::uint32_t point = due[at];
       const glm::vec3 voxel = transform.apply(shell.positionsLocal[point]);
       if (drifting_ && q >= kMandatoryQueues && lookupQueue_[point] >= kMandatoryQueues) {
-        const float guaranteedVoxels =
-            static_cast<float>(voxelsToContact(lookupQueue_[point])) - glm::length(voxel - lookupVoxel_[point]);
+        const float guaranteedVoxels = static_cast<float>(voxelsToContact(lookupQueue_[point])) -
+                                       glm::length(voxel - lookupVoxel_[point]);
         if (guaranteedVoxels >= 2.0f) {
           queues.move(point, q, std::min(q, static_cast<int>(guaranteedVoxels) + 1));
           ++tested.drifted;

@@ -84,16 +84,17 @@ public:
   /// chunk asks `pager` (null: the voxmap is whole) for the voxmap chunks around it
   /// (paper §5.3). Returns the chunk tests.
   std::uint32_t updateChunks(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                             double relativeTravelM, std::span<std::uint32_t> scratch, VoxelPager* pager) noexcept;
+                             double relativeTravelM, std::span<std::uint32_t> scratch,
+                             VoxelPager* pager) noexcept;
 
   /// Collects the due points into `due` (room for the pointshell); returns how many.
   std::uint32_t collectDue(double relativeTravelM, std::span<std::uint32_t> due) noexcept;
 
   /// What testDue() did.
   struct Tested {
-    std::uint32_t contacts = 0;  ///< written to `contacts`
-    std::uint32_t drifted = 0;   ///< tests that skipped the lookup
-    std::uint32_t missing = 0;   ///< lookups of paged-out chunks (the frame must be suspended)
+    std::uint32_t contacts = 0;           ///< written to `contacts`
+    std::uint32_t drifted = 0;            ///< tests that skipped the lookup
+    std::uint32_t missing = 0;            ///< lookups of paged-out chunks (the frame must be suspended)
     glm::ivec3 lastAskedChunk{-1 << 30};  ///< the voxmap chunk last asked for
   };
   /// Tests the points collectDue() returned; writes those whose value lies in
@@ -112,7 +113,8 @@ private:
   int chunkClass(const Voxmap& voxmap, const glm::vec3& voxelOfCentroid, std::uint32_t chunk) const noexcept;
   /// Moves `chunk` from chunk queue `from` to what its test found, `to`; a disgorged chunk
   /// whose centroid lies at `voxelOfCentroid` asks `pager` for the voxels around it.
-  void testChunk(std::uint32_t chunk, int from, int to, const glm::vec3& voxelOfCentroid, VoxelPager* pager) noexcept;
+  void testChunk(std::uint32_t chunk, int from, int to, const glm::vec3& voxelOfCentroid,
+                 VoxelPager* pager) noexcept;
   /// Asks `pager` for the voxmap chunks within `radiusVoxels` of `voxel`.
   static void askAround(VoxelPager* pager, const glm::vec3& voxel, float radiusVoxels) noexcept;
   double chunkDistanceM(int q) const noexcept;
@@ -127,9 +129,9 @@ private:
   std::uint8_t maxValue_;
   std::vector<std::uint32_t> dueEndByQueue_;  // collectDue's output: queue q's points end here
   bool drifting_;
-  std::vector<glm::vec3> lookupVoxel_;      // per point, where its last lookup was (voxel coordinates)
-  std::vector<std::uint8_t> lookupQueue_;   // per point, the queue that lookup found; 0: none
-  double lastTravelM_ = 0.0;                  // relative travel allowed in the frame before
+  std::vector<glm::vec3> lookupVoxel_;     // per point, where its last lookup was (voxel coordinates)
+  std::vector<std::uint8_t> lookupQueue_;  // per point, the queue that lookup found; 0: none
+  double lastTravelM_ = 0.0;               // relative travel allowed in the frame before
 };
 
 }  // namespace voxhap

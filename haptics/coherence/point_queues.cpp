@@ -122,7 +122,7 @@ std::uint32_t PointQueues::nextAtOrAfter(int q, std::uint32_t from) const noexce
 }
 
 PointQueues::Sweep PointQueues::takeSweep(int q, std::uint32_t minPoints, std::uint64_t minIndices,
-                                         std::span<std::uint32_t> out) noexcept {
+                                          std::span<std::uint32_t> out) noexcept {
   Sweep sweep;
   if (pointCount_ == 0) return sweep;
   const auto qi = static_cast<std::size_t>(q);
@@ -137,7 +137,7 @@ PointQueues::Sweep PointQueues::takeSweep(int q, std::uint32_t minPoints, std::u
     std::uint32_t next = nextAtOrAfter(q, index);
     std::uint64_t position = at - index + next;
     if (next == pointCount_) position = at - index + n + nextAtOrAfter(q, 0);  // wrap round
-    if (position >= start + n) break;  // a full circle
+    if (position >= start + n) break;                                          // a full circle
     if (sweep.taken >= minPoints && position >= start + mustCover) break;
     out[sweep.taken++] = static_cast<std::uint32_t>(position % n);
     at = position + 1;
@@ -150,7 +150,8 @@ PointQueues::Sweep PointQueues::takeSweep(int q, std::uint32_t minPoints, std::u
 
 std::uint32_t PointQueues::takeAll(int q, std::span<std::uint32_t> out) const noexcept {
   std::uint32_t written = 0;
-  for (std::uint32_t p = nextAtOrAfter(q, 0); p < pointCount_ && written < out.size(); p = nextAtOrAfter(q, p + 1)) {
+  for (std::uint32_t p = nextAtOrAfter(q, 0); p < pointCount_ && written < out.size();
+       p = nextAtOrAfter(q, p + 1)) {
     out[written++] = p;
   }
   return written;

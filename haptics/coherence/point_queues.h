@@ -47,7 +47,7 @@ public:
 
   /// What one takeSweep call did.
   struct Sweep {
-    std::uint32_t taken = 0;          ///< points written
+    std::uint32_t taken = 0;           ///< points written
     std::uint64_t coveredIndices = 0;  ///< how far the cursor moved, in point indices (≤ pointCount)
   };
   /// Moves the cursor of queue `q` forward (wrapping round) and writes the points it passes
@@ -55,7 +55,8 @@ public:
   /// those in the next `minIndices` indices. Each point at most once per call. Over
   /// successive calls every point of the queue comes up in turn; one that is put in the
   /// queue at any time comes up before the cursor has moved a further pointCount() indices.
-  Sweep takeSweep(int q, std::uint32_t minPoints, std::uint64_t minIndices, std::span<std::uint32_t> out) noexcept;
+  Sweep takeSweep(int q, std::uint32_t minPoints, std::uint64_t minIndices,
+                  std::span<std::uint32_t> out) noexcept;
 
   /// Writes every point of queue `q` in index order to `out`; returns how many.
   std::uint32_t takeAll(int q, std::span<std::uint32_t> out) const noexcept;
@@ -63,7 +64,9 @@ public:
 private:
   static constexpr std::uint32_t kWordBits = 32;
   std::uint32_t* words(int q) noexcept { return &bits_[static_cast<std::size_t>(q) * wordCount_]; }
-  const std::uint32_t* words(int q) const noexcept { return &bits_[static_cast<std::size_t>(q) * wordCount_]; }
+  const std::uint32_t* words(int q) const noexcept {
+    return &bits_[static_cast<std::size_t>(q) * wordCount_];
+  }
   std::uint32_t* summary(int q) noexcept { return &summary_[static_cast<std::size_t>(q) * summaryCount_]; }
   const std::uint32_t* summary(int q) const noexcept {
     return &summary_[static_cast<std::size_t>(q) * summaryCount_];

@@ -10,7 +10,9 @@ namespace voxhap {
 SweptQueues::SweptQueues(std::uint32_t memberCount, int queueCount)
     : queues_(memberCount, queueCount), owedIndices_(static_cast<std::size_t>(queueCount), 0.0) {}
 
-void SweptQueues::clearOwed() noexcept { std::fill(owedIndices_.begin(), owedIndices_.end(), 0.0); }
+void SweptQueues::clearOwed() noexcept {
+  std::fill(owedIndices_.begin(), owedIndices_.end(), 0.0);
+}
 
 std::uint32_t SweptQueues::collect(int q, double distanceM, double travelM, double lastTravelM,
                                    std::span<std::uint32_t> out) noexcept {
@@ -24,7 +26,7 @@ std::uint32_t SweptQueues::collect(int q, double distanceM, double travelM, doub
     return 0;
   }
   const PointQueues::Sweep sweep = queues_.takeSweep(q, sweepQuota(count, travelM, distanceM),
-                                                    static_cast<std::uint64_t>(std::ceil(owed)), out);
+                                                     static_cast<std::uint64_t>(std::ceil(owed)), out);
   owed = std::max(0.0, owed - static_cast<double>(sweep.coveredIndices));
   return sweep.taken;
 }

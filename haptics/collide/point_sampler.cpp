@@ -18,7 +18,8 @@ std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, cons
   std::array<std::uint8_t, 3> shifts{};
   for (int f = 0; f < 3; ++f) {
     const Field field = geometricalAwareness ? aware[f] : Field::Surface;
-    shifts[static_cast<std::size_t>(f)] = static_cast<std::uint8_t>(static_cast<int>(field) * encoding.bitsPerField);
+    shifts[static_cast<std::size_t>(f)] =
+        static_cast<std::uint8_t>(static_cast<int>(field) * encoding.bitsPerField);
   }
   return shifts;
 }
@@ -30,7 +31,8 @@ std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const 
   for (std::uint32_t i = first; i < last; ++i) {
     const PointSample sample = samplePointAt(shell, voxmap, transform, fieldShifts, i);
     // value − 1 wraps far (0) to 255, so one compare keeps [1, maxValue]
-    if (static_cast<std::uint8_t>(sample.value - 1u) < maxValue) contacts[found++] = {i, sample.ijkVoxel, sample.value};
+    if (static_cast<std::uint8_t>(sample.value - 1u) < maxValue)
+      contacts[found++] = {i, sample.ijkVoxel, sample.value};
   }
   return found;
 }

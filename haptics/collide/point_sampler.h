@@ -23,9 +23,9 @@ namespace voxhap {
 
 /// One point found at or inside the force layer.
 struct PointContact {
-  std::uint32_t point;    ///< index in the pointshell
-  glm::ivec3 ijkVoxel;    ///< voxel of the voxmap it fell in
-  std::uint8_t value;     ///< the field value read there (1 … force layer)
+  std::uint32_t point;  ///< index in the pointshell
+  glm::ivec3 ijkVoxel;  ///< voxel of the voxmap it fell in
+  std::uint8_t value;   ///< the field value read there (1 … force layer)
 };
 
 /// Pointshell-local metres → voxmap voxel coordinates (voxel (i,j,k) spans [i, i+1)).
@@ -48,7 +48,8 @@ struct PointSample {
 
 /// Reads the field at `shift` where voxel coordinates `voxelCoords` fall.
 inline PointSample sampleAt(const Voxmap& voxmap, const glm::vec3& voxelCoords, std::uint8_t shift) noexcept {
-  const glm::ivec3 ijk(static_cast<int>(std::floor(voxelCoords.x)), static_cast<int>(std::floor(voxelCoords.y)),
+  const glm::ivec3 ijk(static_cast<int>(std::floor(voxelCoords.x)),
+                       static_cast<int>(std::floor(voxelCoords.y)),
                        static_cast<int>(std::floor(voxelCoords.z)));
   const VoxelWord word = voxmap.word(ijk);
   return {ijk, static_cast<std::uint8_t>((word >> shift) & voxmap.encoding().fieldMask()),
@@ -57,8 +58,10 @@ inline PointSample sampleAt(const Voxmap& voxmap, const glm::vec3& voxelCoords, 
 
 /// Tests point `index` of `shell`; `fieldShifts` comes from fieldShiftsByFeature. Inline:
 /// the hot loops of samplePoints and of time-critical sampling are built from it.
-inline PointSample samplePointAt(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                                 const std::array<std::uint8_t, 3>& fieldShifts, std::uint32_t index) noexcept {
+inline PointSample samplePointAt(const Pointshell& shell, const Voxmap& voxmap,
+                                 const VoxelTransform& transform,
+                                 const std::array<std::uint8_t, 3>& fieldShifts,
+                                 std::uint32_t index) noexcept {
   return sampleAt(voxmap, transform.apply(shell.positionsLocal[index]),
                   fieldShifts[static_cast<std::size_t>(shell.features[index])]);
 }
@@ -75,8 +78,10 @@ std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const 
                            std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept;
 
 /// The field value point `index` reads (0 … 2^bits − 1); for tests and proximity.
-inline std::uint8_t samplePoint(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                                const std::array<std::uint8_t, 3>& fieldShifts, std::uint32_t index) noexcept {
+inline std::uint8_t samplePoint(const Pointshell& shell, const Voxmap& voxmap,
+                                const VoxelTransform& transform,
+                                const std::array<std::uint8_t, 3>& fieldShifts,
+                                std::uint32_t index) noexcept {
   return samplePointAt(shell, voxmap, transform, fieldShifts, index).value;
 }
 

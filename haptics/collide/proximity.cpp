@@ -14,8 +14,8 @@ float surfaceDistanceM(const Voxmap& voxmap, const glm::dvec3& pointVoxmap) {
   return static_cast<float>((v - kValueFeature) * voxmap.grid().voxelSizeM);
 }
 
-void vertexDistancesM(std::span<const glm::vec3> verticesLocal, const Pose& objectToVoxmap, const Voxmap& voxmap,
-                      std::vector<float>& out) {
+void vertexDistancesM(std::span<const glm::vec3> verticesLocal, const Pose& objectToVoxmap,
+                      const Voxmap& voxmap, std::vector<float>& out) {
   out.resize(verticesLocal.size());
   for (std::size_t i = 0; i < verticesLocal.size(); ++i) {
     out[i] = surfaceDistanceM(voxmap, apply(objectToVoxmap, glm::dvec3(verticesLocal[i])));

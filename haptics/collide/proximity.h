@@ -35,8 +35,8 @@ float surfaceDistanceM(const Voxmap& voxmap, const glm::dvec3& pointVoxmap);
 
 /// Per vertex of `verticesLocal` (moving object's local frame, m), at `objectToVoxmap`:
 /// the estimated distance to the voxmap object, m, written to `out` (resized).
-void vertexDistancesM(std::span<const glm::vec3> verticesLocal, const Pose& objectToVoxmap, const Voxmap& voxmap,
-                      std::vector<float>& out);
+void vertexDistancesM(std::span<const glm::vec3> verticesLocal, const Pose& objectToVoxmap,
+                      const Voxmap& voxmap, std::vector<float>& out);
 
 /// Smallest estimated distance of any pointshell point to the voxmap object, m
 /// (kBeyondRange when every point is beyond the field).

@@ -42,8 +42,8 @@ glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8
 /// corner or edge has no normal of its own worth pushing along, and a surface point on
 /// the side of a part resting on a plate would push sideways along its own normal). An
 /// edge (edge points): between the two.
-glm::dvec3 pushDirectionOf(const Voxmap& voxmap, const PointContact& contact, PointFeature feature, bool aware,
-                           std::uint8_t fieldShift, const glm::dvec3& n, PairWrench& out) {
+glm::dvec3 pushDirectionOf(const Voxmap& voxmap, const PointContact& contact, PointFeature feature,
+                           bool aware, std::uint8_t fieldShift, const glm::dvec3& n, PairWrench& out) {
   if (feature == PointFeature::Surface && aware) return n;
   glm::dvec3 g = fallDirection(voxmap, contact.ijkVoxel, fieldShift, out);
   if (g == glm::dvec3(0.0)) g = n;
@@ -68,17 +68,17 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
   // velocity of the shell relative to the voxmap object at a point p of the voxmap frame:
   // linear + angular × p, both constant over the frame's contacts
   const Pose worldToVoxmap = inverse(voxmapMotion.poseWorld);
-  const glm::dvec3 angular = applyRotation(worldToVoxmap, shellMotion.angularVelocityWorld -
-                                                              voxmapMotion.angularVelocityWorld);
-  const glm::dvec3 linearWorld = shellMotion.linearVelocityWorld -
-                                 glm::cross(shellMotion.angularVelocityWorld, shellComWorld) -
-                                 voxmapMotion.linearVelocityWorld +
-                                 glm::cross(voxmapMotion.angularVelocityWorld, voxmapComWorld);
+  const glm::dvec3 angular =
+      applyRotation(worldToVoxmap, shellMotion.angularVelocityWorld - voxmapMotion.angularVelocityWorld);
+  const glm::dvec3 linearWorld =
+      shellMotion.linearVelocityWorld - glm::cross(shellMotion.angularVelocityWorld, shellComWorld) -
+      voxmapMotion.linearVelocityWorld + glm::cross(voxmapMotion.angularVelocityWorld, voxmapComWorld);
   // the velocity field v(x) = linearWorld + ω_rel × x in world, taken to the voxmap frame:
   // x = R p + t gives v = R⁻¹(linearWorld + ω_rel × t) + (R⁻¹ω_rel) × p
   const glm::dvec3 linear = applyRotation(
-      worldToVoxmap, linearWorld + glm::cross(shellMotion.angularVelocityWorld - voxmapMotion.angularVelocityWorld,
-                                              voxmapMotion.poseWorld.position));
+      worldToVoxmap,
+      linearWorld + glm::cross(shellMotion.angularVelocityWorld - voxmapMotion.angularVelocityWorld,
+                               voxmapMotion.poseWorld.position));
   const VoxelGrid& grid = voxmap.grid();
   const double s = grid.voxelSizeM;
   const auto shifts = fieldShiftsByFeature(params.geometricalAwareness, voxmap.encoding());
@@ -89,7 +89,8 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
   glm::dvec3 torque[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
   std::uint32_t acting[2] = {0, 0};
   for (const PointContact& c : contacts) {
-    const glm::dvec3 p = shellToVoxmapRotation * glm::dvec3(shell.positionsLocal[c.point]) + shellToVoxmap.position;
+    const glm::dvec3 p =
+        shellToVoxmapRotation * glm::dvec3(shell.positionsLocal[c.point]) + shellToVoxmap.position;
     const glm::dvec3 n = shellToVoxmapRotation * glm::dvec3(shell.normalsLocal[c.point]);
     const PointFeature feature = shell.features[c.point];
     const glm::dvec3 pushDirection = pushDirectionOf(voxmap, c, feature, params.geometricalAwareness,
@@ -108,7 +109,8 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     }
     if (!beforeContact && depth <= 0.0) continue;
     const double approach = glm::dot(linear + glm::cross(angular, p), pushDirection);
-    const double push = std::max(0.0, params.pointStiffnessNPerM * depth + params.pointDampingNsPerM * approach);
+    const double push =
+        std::max(0.0, params.pointStiffnessNPerM * depth + params.pointDampingNsPerM * approach);
     if (push == 0.0) continue;
     out.maxDepthM = std::max(out.maxDepthM, depth);
     const glm::dvec3 f = -push * pushDirection;

@@ -42,9 +42,9 @@ namespace voxhap {
 
 /// Pose and velocity of one object of a pair, world frame.
 struct BodyMotion {
-  Pose poseWorld;                       ///< local → world
-  glm::dvec3 comLocal{0.0};             ///< centre of mass, object-local frame, m
-  glm::dvec3 linearVelocityWorld{0.0};  ///< of the centre of mass, m/s
+  Pose poseWorld;                        ///< local → world
+  glm::dvec3 comLocal{0.0};              ///< centre of mass, object-local frame, m
+  glm::dvec3 linearVelocityWorld{0.0};   ///< of the centre of mass, m/s
   glm::dvec3 angularVelocityWorld{0.0};  ///< rad/s
 };
 
@@ -55,10 +55,10 @@ struct DepthRow {
   glm::dvec3 pointWorld{0.0};       ///< m
   glm::dvec3 intoVoxmapWorld{0.0};  ///< unit
   double depthM = 0.0;              ///< tangent-plane depth d, m (may be negative)
-  double limitM = 0.0;              ///< the deepest mean depth its pair's rows may reach, m (set by the caller)
-  double floorM = 0.0;              ///< d₀: the sink's minDepthM, below which a row weighs nothing, m
-  int shellObject = 0;              ///< moving object index of the pointshell (set by the caller)
-  int voxmapObject = 0;             ///< moving object index of the voxmap, or −1: static (set by the caller)
+  double limitM = 0.0;   ///< the deepest mean depth its pair's rows may reach, m (set by the caller)
+  double floorM = 0.0;   ///< d₀: the sink's minDepthM, below which a row weighs nothing, m
+  int shellObject = 0;   ///< moving object index of the pointshell (set by the caller)
+  int voxmapObject = 0;  ///< moving object index of the voxmap, or −1: static (set by the caller)
 };
 
 /// Where tangentPlaneWrench writes the contacts that may limit this frame's motion: every
@@ -71,16 +71,16 @@ struct DepthRowSink {
 /// Contact wrench on both objects of a pair, world frame; torques about each object's
 /// centre of mass.
 struct PairWrench {
-  glm::dvec3 forceOnShellWorld{0.0};     ///< N
-  glm::dvec3 torqueOnShellWorld{0.0};    ///< N·m
-  glm::dvec3 forceOnVoxmapWorld{0.0};    ///< N, = −forceOnShellWorld
-  glm::dvec3 torqueOnVoxmapWorld{0.0};   ///< N·m
-  std::uint32_t contactPoints = 0;       ///< contacts at or inside the force layer
-  std::uint32_t pushingPoints = 0;       ///< contacts pushing (depth > 0, or damping before contact)
-  double maxDepthM = 0.0;                ///< largest depth d, m
-  std::uint32_t missingVoxels = 0;       ///< neighbour lookups of a paged voxmap that found it paged out
-  glm::ivec3 firstMissingVoxel{0};       ///< the first of them
-  std::uint32_t depthRows = 0;           ///< rows written to the DepthRowSink
+  glm::dvec3 forceOnShellWorld{0.0};    ///< N
+  glm::dvec3 torqueOnShellWorld{0.0};   ///< N·m
+  glm::dvec3 forceOnVoxmapWorld{0.0};   ///< N, = −forceOnShellWorld
+  glm::dvec3 torqueOnVoxmapWorld{0.0};  ///< N·m
+  std::uint32_t contactPoints = 0;      ///< contacts at or inside the force layer
+  std::uint32_t pushingPoints = 0;      ///< contacts pushing (depth > 0, or damping before contact)
+  double maxDepthM = 0.0;               ///< largest depth d, m
+  std::uint32_t missingVoxels = 0;      ///< neighbour lookups of a paged voxmap that found it paged out
+  glm::ivec3 firstMissingVoxel{0};      ///< the first of them
+  std::uint32_t depthRows = 0;          ///< rows written to the DepthRowSink
 };
 
 /// Sums the tangent-plane forces of `contacts` (from samplePoints with the same
@@ -89,6 +89,7 @@ struct PairWrench {
 /// are written to it too (their object indices and limit left to the caller).
 PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, const ContactParams& params,
                               const BodyMotion& shellMotion, const BodyMotion& voxmapMotion,
-                              std::span<const PointContact> contacts, const DepthRowSink* sink = nullptr) noexcept;
+                              std::span<const PointContact> contacts,
+                              const DepthRowSink* sink = nullptr) noexcept;
 
 }  // namespace voxhap

@@ -7,7 +7,8 @@
 
 namespace voxhap {
 
-static_assert(std::endian::native == std::endian::little, "cache keys and files assume a little-endian machine");
+static_assert(std::endian::native == std::endian::little,
+              "cache keys and files assume a little-endian machine");
 
 std::string Digest128::hex() const {
   static constexpr char kDigits[] = "0123456789abcdef";
@@ -19,7 +20,9 @@ std::string Digest128::hex() const {
   return s;
 }
 
-void ContentHash::FreeState::operator()(XXH3_state_s* state) const noexcept { XXH3_freeState(state); }
+void ContentHash::FreeState::operator()(XXH3_state_s* state) const noexcept {
+  XXH3_freeState(state);
+}
 
 ContentHash::ContentHash() : state_(XXH3_createState()) {
   if (!state_) throw std::bad_alloc();
@@ -35,7 +38,9 @@ void ContentHash::update(const void* data, std::size_t bytes) {
   XXH3_128bits_update(state_.get(), data, bytes);
 }
 
-void ContentHash::addDouble(double value) { add(std::bit_cast<std::uint64_t>(value)); }
+void ContentHash::addDouble(double value) {
+  add(std::bit_cast<std::uint64_t>(value));
+}
 
 Digest128 ContentHash::digest() const {
   const XXH128_hash_t h = XXH3_128bits_digest(state_.get());

@@ -26,8 +26,8 @@ inline int defaultThreadCount() {
 /// items finished. Rethrows the first exception a body threw, after all threads stopped.
 template <typename Body>
 void parallelFor(std::size_t count, int threads, Body&& body, const ProgressFn& progress = {}) {
-  const int n = static_cast<int>(std::min<std::size_t>(count, static_cast<std::size_t>(
-                                                                  threads > 0 ? threads : defaultThreadCount())));
+  const int n = static_cast<int>(
+      std::min<std::size_t>(count, static_cast<std::size_t>(threads > 0 ? threads : defaultThreadCount())));
   std::atomic<std::size_t> next{0};
   std::atomic<std::size_t> finished{0};
   std::exception_ptr failure;

@@ -7,7 +7,8 @@
 namespace voxhap {
 namespace {
 
-constexpr DeviceLimits limitsOf(double forceN, double torqueNm, double stiffnessNPerM, double angularNmPerRad) {
+constexpr DeviceLimits limitsOf(double forceN, double torqueNm, double stiffnessNPerM,
+                                double angularNmPerRad) {
   DeviceLimits limits;
   limits.maxForceN = forceN;
   limits.maxTorqueNm = torqueNm;
@@ -18,7 +19,8 @@ constexpr DeviceLimits limitsOf(double forceN, double torqueNm, double stiffness
 
 // the default's figures are DeviceLimits' defaults (virtual_coupling.h)
 constexpr std::array kProfiles{
-    DeviceProfile{"scripted", "a motion script through a rigid handle: 100 N, 10 N·m (a firm two-handed pull)",
+    DeviceProfile{"scripted",
+                  "a motion script through a rigid handle: 100 N, 10 N·m (a firm two-handed pull)",
                   DeviceLimits{}},
     DeviceProfile{"desktop-6dof", "a desktop 6-DOF force device: 8 N, 0.4 N·m, 2 kN/m, 2 N·m/rad",
                   limitsOf(8.0, 0.4, 2000.0, 2.0)},
@@ -28,11 +30,14 @@ constexpr std::array kProfiles{
 
 }  // namespace
 
-std::span<const DeviceProfile> deviceProfiles() noexcept { return kProfiles; }
+std::span<const DeviceProfile> deviceProfiles() noexcept {
+  return kProfiles;
+}
 
 std::string deviceProfileNames() {
   std::string names;
-  for (const DeviceProfile& profile : kProfiles) names += (names.empty() ? "" : ", ") + std::string(profile.name);
+  for (const DeviceProfile& profile : kProfiles)
+    names += (names.empty() ? "" : ", ") + std::string(profile.name);
   return names;
 }
 

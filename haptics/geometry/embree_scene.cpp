@@ -1,12 +1,11 @@
 #include "haptics/geometry/embree_scene.h"
 
-#include <embree3/rtcore.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <tuple>
 
+#include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 
 #include "haptics/core/error.h"
@@ -14,8 +13,12 @@
 namespace voxhap {
 namespace {
 
-RTCDevice asDevice(void* p) { return static_cast<RTCDevice>(p); }
-RTCScene asScene(void* p) { return static_cast<RTCScene>(p); }
+RTCDevice asDevice(void* p) {
+  return static_cast<RTCDevice>(p);
+}
+RTCScene asScene(void* p) {
+  return static_cast<RTCScene>(p);
+}
 
 /// An intersect context that also carries where to put the crossings.
 struct CrossingContext {
@@ -26,8 +29,8 @@ struct CrossingContext {
 void recordCrossing(const RTCFilterFunctionNArguments* args) {
   auto* collector = reinterpret_cast<CrossingContext*>(args->context);
   const float t = RTCRayN_tfar(args->ray, args->N, 0);
-  collector->out->push_back({static_cast<double>(t), RTCHitN_geomID(args->hit, args->N, 0),
-                             RTCHitN_primID(args->hit, args->N, 0)});
+  collector->out->push_back(
+      {static_cast<double>(t), RTCHitN_geomID(args->hit, args->N, 0), RTCHitN_primID(args->hit, args->N, 0)});
   args->valid[0] = 0;  // reject, so that traversal goes on to the next crossing
 }
 
@@ -48,8 +51,8 @@ bool visitTriangle(RTCPointQueryFunctionArguments* args) {
   const double d = glm::length(p - q->point);
   // ties go to the lower (part, triangle), so that the answer does not depend on traversal order
   const bool better = !q->best || d < q->best->distanceM ||
-                      (d == q->best->distanceM && std::pair(args->geomID, args->primID) <
-                                                      std::pair(q->best->part, q->best->triangle));
+                      (d == q->best->distanceM &&
+                       std::pair(args->geomID, args->primID) < std::pair(q->best->part, q->best->triangle));
   if (!better || d > args->query->radius) return false;
   const glm::dvec3 n = glm::cross(b - a, c - a);
   q->best = ClosestSurfacePoint{p, d, args->geomID, args->primID, glm::normalize(n)};
@@ -68,9 +71,9 @@ bool collectTriangle(RTCPointQueryFunctionArguments* args) {
   auto* q = static_cast<NearQuery*>(args->userPtr);
   const TriangleMesh& mesh = *(*q->meshes)[args->geomID];
   const glm::uvec3& t = mesh.triangles[args->primID];
-  const glm::dvec3 p = closestPointOnTriangle(q->point, glm::dvec3(mesh.positionsWorld[t.x]),
-                                              glm::dvec3(mesh.positionsWorld[t.y]),
-                                              glm::dvec3(mesh.positionsWorld[t.z]));
+  const glm::dvec3 p =
+      closestPointOnTriangle(q->point, glm::dvec3(mesh.positionsWorld[t.x]),
+                             glm::dvec3(mesh.positionsWorld[t.y]), glm::dvec3(mesh.positionsWorld[t.z]));
   if (glm::length(p - q->point) <= q->radiusM) q->out->push_back({args->geomID, args->primID});
   return false;  // the radius stays: every triangle within it is wanted
 }
@@ -98,12 +101,14 @@ glm::dvec3 closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, cons
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
   const double denominator = 1.0 / (va + vb + vc);
   return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
-EmbreeScene::EmbreeScene(std::span<const TriangleMesh* const> meshes) : meshes_(meshes.begin(), meshes.end()) {
+EmbreeScene::EmbreeScene(std::span<const TriangleMesh* const> meshes)
+    : meshes_(meshes.begin(), meshes.end()) {
   RTCDevice device = rtcNewDevice(nullptr);
   if (!device) throw Error("Embree: cannot create a device");
   device_ = device;
@@ -115,8 +120,9 @@ EmbreeScene::EmbreeScene(std::span<const TriangleMesh* const> meshes) : meshes_(
     const TriangleMesh& mesh = *meshes_[i];
     if (mesh.triangles.empty()) continue;
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positionsWorld.size()));
+    auto* vertices =
+        static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                    3 * sizeof(float), mesh.positionsWorld.size()));
     auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
         geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
     if (!vertices || !indices) {
@@ -137,7 +143,9 @@ EmbreeScene::EmbreeScene(std::span<const TriangleMesh* const> meshes) : meshes_(
   }
 }
 
-EmbreeScene::~EmbreeScene() { release(); }
+EmbreeScene::~EmbreeScene() {
+  release();
+}
 
 void EmbreeScene::release() {
   if (scene_) rtcReleaseScene(asScene(scene_));
@@ -166,9 +174,10 @@ void EmbreeScene::allCrossings(const glm::dvec3& origin, const glm::dvec3& direc
   const std::size_t first = out.size();
   rtcIntersect1(asScene(scene_), &collector.context, &rayHit);
   // a triangle may be reported more than once; keep each once
-  std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(), [](const RayCrossing& x, const RayCrossing& y) {
-    return std::tie(x.part, x.triangle, x.t) < std::tie(y.part, y.triangle, y.t);
-  });
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+            [](const RayCrossing& x, const RayCrossing& y) {
+              return std::tie(x.part, x.triangle, x.t) < std::tie(y.part, y.triangle, y.t);
+            });
   out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
                         [](const RayCrossing& x, const RayCrossing& y) {
                           return x.part == y.part && x.triangle == y.triangle;
@@ -176,7 +185,8 @@ void EmbreeScene::allCrossings(const glm::dvec3& origin, const glm::dvec3& direc
             out.end());
 }
 
-std::optional<ClosestSurfacePoint> EmbreeScene::closestPoint(const glm::dvec3& point, double maxDistanceM) const {
+std::optional<ClosestSurfacePoint> EmbreeScene::closestPoint(const glm::dvec3& point,
+                                                             double maxDistanceM) const {
   RTCPointQuery query{};
   query.x = static_cast<float>(point.x);
   query.y = static_cast<float>(point.y);
@@ -190,7 +200,8 @@ std::optional<ClosestSurfacePoint> EmbreeScene::closestPoint(const glm::dvec3& p
   return q.best;
 }
 
-void EmbreeScene::trianglesWithin(const glm::dvec3& point, double radiusM, std::vector<TriangleRef>& out) const {
+void EmbreeScene::trianglesWithin(const glm::dvec3& point, double radiusM,
+                                  std::vector<TriangleRef>& out) const {
   RTCPointQuery query{};
   query.x = static_cast<float>(point.x);
   query.y = static_cast<float>(point.y);

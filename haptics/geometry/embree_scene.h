@@ -32,11 +32,11 @@ struct TriangleRef {
 
 /// The surface point nearest to a query point.
 struct ClosestSurfacePoint {
-  glm::dvec3 point;        ///< on the triangle, same frame as the meshes, m
-  double distanceM;        ///< from the query point
+  glm::dvec3 point;  ///< on the triangle, same frame as the meshes, m
+  double distanceM;  ///< from the query point
   std::uint32_t part;
   std::uint32_t triangle;
-  glm::dvec3 faceNormal;   ///< unit outward normal of that triangle
+  glm::dvec3 faceNormal;  ///< unit outward normal of that triangle
 };
 
 class EmbreeScene {

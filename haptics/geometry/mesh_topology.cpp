@@ -64,8 +64,7 @@ MeshTopology computeTopology(const TriangleMesh& mesh) {
   MeshTopology topology;
   for (std::size_t begin = 0; begin < edges.size();) {
     std::size_t end = begin + 1;
-    while (end < edges.size() && edges[end].low == edges[begin].low &&
-           edges[end].high == edges[begin].high) {
+    while (end < edges.size() && edges[end].low == edges[begin].low && edges[end].high == edges[begin].high) {
       ++end;
     }
     const std::size_t uses = end - begin;

@@ -33,7 +33,8 @@ PseudoNormals::PseudoNormals(std::span<const TriangleMesh* const> meshes)
     auto& ids = part.idOfPosition;
     part.weldedOf.reserve(mesh->positionsWorld.size());
     for (const glm::vec3& p : mesh->positionsWorld) {
-      const auto [it, added] = ids.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<std::uint32_t>(ids.size()));
+      const auto [it, added] =
+          ids.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<std::uint32_t>(ids.size()));
       part.weldedOf.push_back(it->second);
     }
     part.vertexNormals.assign(ids.size(), glm::dvec3(0.0));
@@ -61,7 +62,8 @@ std::optional<glm::dvec3> PseudoNormals::vertexNormal(std::size_t part, const gl
   return parts_[part].vertexNormals[it->second];
 }
 
-std::optional<glm::dvec3> PseudoNormals::edgeNormal(std::size_t part, const glm::vec3& a, const glm::vec3& b) const {
+std::optional<glm::dvec3> PseudoNormals::edgeNormal(std::size_t part, const glm::vec3& a,
+                                                    const glm::vec3& b) const {
   const auto& ids = parts_[part].idOfPosition;
   const auto ia = ids.find(Key(a.x, a.y, a.z));
   const auto ib = ids.find(Key(b.x, b.y, b.z));

@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <map>
 #include <optional>
-#include <tuple>
 #include <span>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -41,9 +41,9 @@ public:
 private:
   using Key = std::tuple<float, float, float>;
   struct PartNormals {
-    std::map<Key, std::uint32_t> idOfPosition;  // welded id of each distinct position
-    std::vector<std::uint32_t> weldedOf;     // per mesh vertex: its welded id
-    std::vector<glm::dvec3> vertexNormals;   // per welded id, unit
+    std::map<Key, std::uint32_t> idOfPosition;                  // welded id of each distinct position
+    std::vector<std::uint32_t> weldedOf;                        // per mesh vertex: its welded id
+    std::vector<glm::dvec3> vertexNormals;                      // per welded id, unit
     std::unordered_map<std::uint64_t, glm::dvec3> edgeNormals;  // per welded edge, unit
   };
   std::vector<const TriangleMesh*> meshes_;

@@ -1,7 +1,5 @@
 #include "haptics/geometry/quasi_planar.h"
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
 #include <algorithm>
 #include <bit>
 #include <cassert>
@@ -10,6 +8,7 @@
 #include <numbers>
 #include <numeric>
 
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <glm/geometric.hpp>
 
 namespace voxhap {
@@ -30,7 +29,8 @@ std::uint32_t positionKey(float v) {
 
 /// Welded vertex id of every input vertex: vertices with bit-identical positions share
 /// one id; ids are dense and numbered in order of first appearance.
-std::vector<std::uint32_t> weldByPosition(const std::vector<glm::vec3>& positions, std::uint32_t& weldedCount) {
+std::vector<std::uint32_t> weldByPosition(const std::vector<glm::vec3>& positions,
+                                          std::uint32_t& weldedCount) {
   struct Keyed {
     std::uint32_t x, y, z, index;
   };
@@ -99,7 +99,8 @@ bool withinRightAngle(const glm::dvec3& a, const glm::dvec3& b) {
 /// Per welded vertex: whether it touches three or more polygons (two are remembered).
 class PolygonsAtVertex {
 public:
-  explicit PolygonsAtVertex(std::size_t vertexCount) : seen_(vertexCount, {kNone, kNone}), many_(vertexCount, 0) {}
+  explicit PolygonsAtVertex(std::size_t vertexCount)
+      : seen_(vertexCount, {kNone, kNone}), many_(vertexCount, 0) {}
 
   void add(std::uint32_t vertex, std::uint32_t polygon) {
     std::array<std::uint32_t, 2>& seen = seen_[vertex];
@@ -135,8 +136,8 @@ MeshFeatures extractFeatures(const TriangleMesh& mesh, double voxelSizeM) {
   HalfEdgeMesh halfEdges;
   halfEdges.reserve(vertexCount, triangleCount * 3 / 2 + 3, triangleCount);
   for (const glm::dvec3& p : position) {
-    halfEdges.add_vertex(HalfEdgeMesh::Point(static_cast<float>(p.x), static_cast<float>(p.y),
-                                             static_cast<float>(p.z)));
+    halfEdges.add_vertex(
+        HalfEdgeMesh::Point(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)));
   }
   std::vector<std::uint32_t> triangleOfFace;
   triangleOfFace.reserve(triangleCount);
@@ -163,7 +164,9 @@ MeshFeatures extractFeatures(const TriangleMesh& mesh, double voxelSizeM) {
   features.refusedTriangles = refused.size();
   std::vector<std::uint32_t>& polygonOf = features.polygonOfTriangle;
   polygonOf.assign(triangleCount, kNone);
-  const auto faceTriangle = [&](OpenMesh::FaceHandle f) { return triangleOfFace[static_cast<std::size_t>(f.idx())]; };
+  const auto faceTriangle = [&](OpenMesh::FaceHandle f) {
+    return triangleOfFace[static_cast<std::size_t>(f.idx())];
+  };
 
   // Grow polygons breadth-first from the lowest unassigned triangle. The polygon's plane
   // is its seed triangle's plane, fixed while it grows: every vertex that enters is
@@ -229,8 +232,8 @@ MeshFeatures extractFeatures(const TriangleMesh& mesh, double voxelSizeM) {
     for (std::size_t k = 0; k < 3; ++k) {
       const std::uint32_t a = std::min(w[k], w[(k + 1) % 3]);
       const std::uint32_t b = std::max(w[k], w[(k + 1) % 3]);
-      const OpenMesh::HalfedgeHandle h =
-          halfEdges.find_halfedge(OpenMesh::VertexHandle(static_cast<int>(a)), OpenMesh::VertexHandle(static_cast<int>(b)));
+      const OpenMesh::HalfedgeHandle h = halfEdges.find_halfedge(OpenMesh::VertexHandle(static_cast<int>(a)),
+                                                                 OpenMesh::VertexHandle(static_cast<int>(b)));
       if (h.is_valid()) {
         featureEdgeMark[static_cast<std::size_t>(halfEdges.edge_handle(h).idx())] = 1;
       } else {
@@ -239,7 +242,8 @@ MeshFeatures extractFeatures(const TriangleMesh& mesh, double voxelSizeM) {
     }
   }
   std::sort(refusedOnlyEdges.begin(), refusedOnlyEdges.end());
-  refusedOnlyEdges.erase(std::unique(refusedOnlyEdges.begin(), refusedOnlyEdges.end()), refusedOnlyEdges.end());
+  refusedOnlyEdges.erase(std::unique(refusedOnlyEdges.begin(), refusedOnlyEdges.end()),
+                         refusedOnlyEdges.end());
 
   // per vertex: how many feature edges, and the far ends of the first two
   std::vector<std::uint32_t> featureEdgesAt(vertexCount, 0);

@@ -96,8 +96,10 @@ HyperchunkBlocks<std::uint8_t> freeLayerBits(std::span<const TriangleMesh* const
       for (int cx = 0; cx < chunks.x; ++cx) {
         if (voxmap.chunkDistance({cx, cy, cz}) != 0) continue;
         for (int i = 0; i < kVoxelsPerChunk; ++i) {
-          const glm::ivec3 v = glm::ivec3(cx, cy, cz) * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
-          if (voxmap.value(v, Field::Surface) == wanted) bits.findOrCreate({cx, cy, cz}, 0)[static_cast<std::size_t>(i)] = kSurfaceBit;
+          const glm::ivec3 v =
+              glm::ivec3(cx, cy, cz) * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
+          if (voxmap.value(v, Field::Surface) == wanted)
+            bits.findOrCreate({cx, cy, cz}, 0)[static_cast<std::size_t>(i)] = kSurfaceBit;
         }
       }
     }
@@ -113,7 +115,8 @@ std::size_t Pointshell::count(PointFeature feature) const {
 
 double Pointshell::radiusAbout(const glm::dvec3& centreLocal) const {
   double radius = 0.0;
-  for (const glm::vec3& p : positionsLocal) radius = std::max(radius, glm::length(glm::dvec3(p) - centreLocal));
+  for (const glm::vec3& p : positionsLocal)
+    radius = std::max(radius, glm::length(glm::dvec3(p) - centreLocal));
   return radius;
 }
 
@@ -128,8 +131,9 @@ void checkPointshellOptions(const PointshellOptions& options) {
   }
 }
 
-Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::span<const MeshFeatures> features,
-                           const PointshellOptions& options, const ProgressFn& progress) {
+Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
+                           std::span<const MeshFeatures> features, const PointshellOptions& options,
+                           const ProgressFn& progress) {
   checkPointshellOptions(options);
   const double s = options.pointSpacingM;
   Bounds bounds;
@@ -149,7 +153,8 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::spa
   const HyperchunkBlocks<std::uint8_t> layerBits =
       options.freeLayer == 0 ? HyperchunkBlocks<std::uint8_t>(glm::ivec3(0))
                              : freeLayerBits(meshes, s, options.freeLayer, options.threads, grid);
-  const HyperchunkBlocks<std::uint8_t> featureBits = rasterizeFeatures(grid, geometry, options.threads, stage(0.0, 0.3));
+  const HyperchunkBlocks<std::uint8_t> featureBits =
+      rasterizeFeatures(grid, geometry, options.threads, stage(0.0, 0.3));
   const HyperchunkBlocks<std::uint8_t>& bits = options.freeLayer == 0 ? featureBits : layerBits;
 
   // the chunks holding surface voxels, in tree order (hyperchunk, then chunk in hyperchunk)
@@ -165,12 +170,13 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::spa
       for (int hx = 0; hx < dims.x; ++hx) {
         if (!bits.hyperHasBlocks({hx, hy, hz})) continue;
         for (std::uint32_t c = 0; c < kChunksPerHyper; ++c) {
-          const glm::ivec3 ijkChunk = glm::ivec3(hx, hy, hz) * kHyperEdgeChunks +
-                                      glm::ivec3(static_cast<int>(c & 7u), static_cast<int>((c >> 3) & 7u), static_cast<int>(c >> 6));
+          const glm::ivec3 ijkChunk =
+              glm::ivec3(hx, hy, hz) * kHyperEdgeChunks +
+              glm::ivec3(static_cast<int>(c & 7u), static_cast<int>((c >> 3) & 7u), static_cast<int>(c >> 6));
           const auto* block = bits.find(ijkChunk);
           if (!block) continue;
-          const auto points = static_cast<std::uint32_t>(
-              std::count_if(block->begin(), block->end(), [](std::uint8_t b) { return (b & kSurfaceBit) != 0; }));
+          const auto points = static_cast<std::uint32_t>(std::count_if(
+              block->begin(), block->end(), [](std::uint8_t b) { return (b & kSurfaceBit) != 0; }));
           if (points > 0) chunks.push_back({ijkChunk, block->data(), points});
         }
       }
@@ -200,14 +206,16 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::spa
         for (int i = 0; i < kVoxelsPerChunk; ++i) {
           const std::uint8_t b = chunks[c].bits[i];
           if (!(b & kSurfaceBit)) continue;
-          const glm::ivec3 v = chunks[c].ijkChunk * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
+          const glm::ivec3 v =
+              chunks[c].ijkChunk * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
           const glm::dvec3 centre = grid.voxelCentre(v);
           PointFeature feature = (b & kVertexBit) ? PointFeature::Vertex
                                  : (b & kEdgeBit) ? PointFeature::Edge
                                                   : PointFeature::Surface;
           glm::dvec3 normal(0.0, 0.0, 1.0);
           if (options.freeLayer > 0) {
-            if (const auto nearest = scene.closestPoint(centre, searchM); nearest && nearest->distanceM > 0.0) {
+            if (const auto nearest = scene.closestPoint(centre, searchM);
+                nearest && nearest->distanceM > 0.0) {
               normal = (centre - nearest->point) / nearest->distanceM;
               // the label of the surface voxel the nearest surface point lies in
               const glm::ivec3 surfaceVoxel = grid.voxelOf(nearest->point);

@@ -43,7 +43,7 @@ struct Pointshell {
   std::vector<glm::vec3> positionsLocal;  ///< object-local frame, m
   std::vector<glm::vec3> normalsLocal;    ///< unit, outward, object-local frame
   std::vector<PointFeature> features;
-  std::vector<std::uint32_t> chunkBegin;  ///< points of chunk c: [chunkBegin[c], chunkBegin[c + 1])
+  std::vector<std::uint32_t> chunkBegin;       ///< points of chunk c: [chunkBegin[c], chunkBegin[c + 1])
   std::vector<glm::vec3> chunkCentroidsLocal;  ///< mean position of each chunk's points, m
 
   std::size_t size() const { return positionsLocal.size(); }
@@ -60,7 +60,8 @@ void checkPointshellOptions(const PointshellOptions& options);
 /// Builds the pointshell of `meshes` (object-local frame); `features[i]` belongs to
 /// `meshes[i]`. Deterministic whatever the thread count. Throws voxhap::Error on bad
 /// options.
-Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes, std::span<const MeshFeatures> features,
-                           const PointshellOptions& options, const ProgressFn& progress = {});
+Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
+                           std::span<const MeshFeatures> features, const PointshellOptions& options,
+                           const ProgressFn& progress = {});
 
 }  // namespace voxhap

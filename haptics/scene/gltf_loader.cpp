@@ -9,12 +9,11 @@
 #include <sstream>
 #include <system_error>
 
-#include <tiny_gltf.h>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
+#include <tiny_gltf.h>
 
 #include "haptics/core/error.h"
 
@@ -23,7 +22,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string quoted(const std::string& name) { return "'" + name + "'"; }
+std::string quoted(const std::string& name) {
+  return "'" + name + "'";
+}
 
 // Both limits keep recursion (tinygltf's JSON conversion, our node walk) far from
 // the end of the stack; real glTF files stay within a few dozen levels.
@@ -99,21 +100,21 @@ bool fileExists(const std::string& path, void* user) {
   std::error_code ec;
   return fs::exists(path, ec);
 }
-std::string expandFilePath(const std::string& path, void*) { return path; }
-bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                   void*) {
+std::string expandFilePath(const std::string& path, void*) {
+  return path;
+}
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
   std::string error;
   *out = readRegularFile(path, error);
   if (!error.empty() && err) *err += error;  // tinygltf prefixes the path
   return error.empty();
 }
-bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
-                    void*) {
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
   if (err) *err = "writing is not allowed while loading";
   return false;
 }
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+               void*) {
   return true;  // only geometry and base colours matter to Voxhap
 }
 
@@ -207,10 +208,8 @@ struct NodeSettings {
   ObjectSettings settings;
 };
 
-std::optional<NodeSettings> readNodeSettings(const tinygltf::Node& node,
-                                             const std::string& nodeName,
-                                             const std::string& where,
-                                             std::vector<std::string>& warnings) {
+std::optional<NodeSettings> readNodeSettings(const tinygltf::Node& node, const std::string& nodeName,
+                                             const std::string& where, std::vector<std::string>& warnings) {
   if (!node.extras.IsObject() || !node.extras.Has("voxhap")) return std::nullopt;
   const tinygltf::Value& v = node.extras.Get("voxhap");
   if (!v.IsObject()) throw Error(where + ": extras.voxhap must be an object");
@@ -276,8 +275,7 @@ public:
     const View view = check(accessorIndex, where + ": indices");
     const int type = view.accessor->componentType;
     if (view.accessor->type != TINYGLTF_TYPE_SCALAR ||
-        (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
          type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
       throw Error(view.where + " must be unsigned byte, short or int scalars");
     }
@@ -295,9 +293,8 @@ public:
         std::memcpy(&index, p, sizeof index);
       }
       if (index >= vertexCount) {
-        throw Error(view.where + ": index " + std::to_string(index) + " at position " +
-                    std::to_string(i) + " is out of range (the primitive has " +
-                    std::to_string(vertexCount) + " vertices)");
+        throw Error(view.where + ": index " + std::to_string(index) + " at position " + std::to_string(i) +
+                    " is out of range (the primitive has " + std::to_string(vertexCount) + " vertices)");
       }
       out[i] = index;
     }
@@ -331,8 +328,8 @@ private:
     const std::vector<unsigned char>& buffer = model_.buffers[static_cast<std::size_t>(bv.buffer)].data;
     if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset) {
       throw Error(viewWhere + ": bytes " + std::to_string(bv.byteOffset) + "+" +
-                  std::to_string(bv.byteLength) + " lie beyond buffer " + std::to_string(bv.buffer) +
-                  " of " + std::to_string(buffer.size()) + " bytes (missing or short buffer)");
+                  std::to_string(bv.byteLength) + " lie beyond buffer " + std::to_string(bv.buffer) + " of " +
+                  std::to_string(buffer.size()) + " bytes (missing or short buffer)");
     }
     const int componentBytes = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
     const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
@@ -344,9 +341,8 @@ private:
                   std::to_string(elementBytes) + " bytes)");
     }
     // count is bounded by the view's bytes first, so the products below cannot overflow
-    const bool fits = a.count == 0 ||
-                      (a.count <= bv.byteLength && a.byteOffset <= bv.byteLength &&
-                       (a.count - 1) * stride + elementBytes <= bv.byteLength - a.byteOffset);
+    const bool fits = a.count == 0 || (a.count <= bv.byteLength && a.byteOffset <= bv.byteLength &&
+                                       (a.count - 1) * stride + elementBytes <= bv.byteLength - a.byteOffset);
     if (!fits) {
       throw Error(viewWhere + ": " + std::to_string(a.count) + " elements from offset " +
                   std::to_string(a.byteOffset) + " do not fit in its " + std::to_string(bv.byteLength) +
@@ -549,7 +545,8 @@ private:
       if (!color) {
         color = primColor;
       } else if (*color != primColor) {
-        scene_.warnings.push_back(primWhere + ": its material colour differs from primitive 0's; "
+        scene_.warnings.push_back(primWhere +
+                                  ": its material colour differs from primitive 0's; "
                                   "the part keeps primitive 0's colour");
       }
     }

@@ -7,9 +7,8 @@
 #include <system_error>
 #include <tuple>
 
-#include <tiny_gltf.h>
-
 #include <glm/common.hpp>
+#include <tiny_gltf.h>
 
 #include "haptics/core/error.h"
 
@@ -33,8 +32,9 @@ int addView(tinygltf::Model& model, const void* data, std::size_t bytes, int tar
 int addMesh(tinygltf::Model& model, const Part& part, int material) {
   const TriangleMesh& mesh = part.mesh;
   tinygltf::Accessor positions;
-  positions.bufferView = addView(model, mesh.positionsWorld.data(),
-                                 mesh.positionsWorld.size() * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+  positions.bufferView =
+      addView(model, mesh.positionsWorld.data(), mesh.positionsWorld.size() * sizeof(glm::vec3),
+              TINYGLTF_TARGET_ARRAY_BUFFER);
   positions.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   positions.type = TINYGLTF_TYPE_VEC3;
   positions.count = mesh.positionsWorld.size();

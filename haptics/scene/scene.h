@@ -48,11 +48,11 @@ struct MeshTopology {
 
 /// One glTF mesh node: a part of a logical object, with its own colour.
 struct Part {
-  std::string name;          ///< node name (or "node N" when the node has none)
+  std::string name;           ///< node name (or "node N" when the node has none)
   glm::vec4 baseColor{1.0f};  ///< linear RGBA, from the material's baseColorFactor
   TriangleMesh mesh;          ///< world frame; degenerate triangles already dropped
   std::uint64_t degenerateTrianglesDropped = 0;
-  MeshTopology topology;      ///< of `mesh`, computed by makePart
+  MeshTopology topology;  ///< of `mesh`, computed by makePart
 };
 
 /// Builds a part: drops degenerate triangles (repeated vertex or zero area),
@@ -103,7 +103,7 @@ struct SceneGroup {
 
 /// A whole scene: its objects and what the loader had to say about it.
 struct Scene {
-  std::string sourceName;            ///< file path or generator name, for messages
+  std::string sourceName;  ///< file path or generator name, for messages
   std::vector<SceneObject> objects;
   /// The file's groups, parents before their children; empty for a scene made in code.
   std::vector<SceneGroup> groups;

@@ -74,7 +74,8 @@ std::size_t groupRows(DepthLimitScratch& s, std::size_t rowCount, std::span<cons
     const DepthRow& row = s.rows[r];
     const double weight = row.depthM - row.floorM;
     if (!(weight > 0.0)) continue;
-    if (count == 0 || s.limits[count - 1].bodyA != row.shellObject || s.limits[count - 1].bodyB != row.voxmapObject) {
+    if (count == 0 || s.limits[count - 1].bodyA != row.shellObject ||
+        s.limits[count - 1].bodyB != row.voxmapObject) {
       Limit& l = s.limits[count++];
       l = Limit{};
       l.bodyA = row.shellObject;
@@ -107,9 +108,9 @@ void sweep(DepthLimitScratch& s, std::size_t count) {
 
 }  // namespace
 
-DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects, std::span<const RigidBodyState> before,
-                            std::span<RigidBodyState> after, DepthLimitScratch& s, std::size_t rowCount,
-                            double dtS) noexcept {
+DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
+                            std::span<const RigidBodyState> before, std::span<RigidBodyState> after,
+                            DepthLimitScratch& s, std::size_t rowCount, double dtS) noexcept {
   DepthLimitFrame frame;
   frame.rows = static_cast<std::uint32_t>(rowCount);
   for (Delta& d : s.deltas) d.refusedLinear = d.refusedAngular = glm::dvec3(0.0);

@@ -76,8 +76,8 @@ struct DepthLimitScratch {
   struct Limit {
     int bodyA = 0;
     int bodyB = kStaticEnvironment;
-    glm::dvec3 linearA{0.0};          ///< ∂gain/∂Δx_a
-    glm::dvec3 angularA{0.0};         ///< ∂gain/∂θ_a, m
+    glm::dvec3 linearA{0.0};   ///< ∂gain/∂Δx_a
+    glm::dvec3 angularA{0.0};  ///< ∂gain/∂θ_a, m
     glm::dvec3 linearB{0.0};
     glm::dvec3 angularB{0.0};
     glm::dvec3 turnPerImpulseA{0.0};  ///< I_a⁻¹ angularA, 1/(kg·m)
@@ -105,17 +105,17 @@ struct DepthLimitScratch {
   DepthLimitScratch(std::size_t rowCapacity = 0, std::size_t pairs = 0, std::size_t bodies = 0)
       : rows(rowCapacity), limits(pairs), deltas(bodies) {}
 
-  std::vector<DepthRow> rows;   ///< this frame's rows, pair by pair, filled by the contacts' pass
-  std::vector<Limit> limits;    ///< this frame's pairs with rows
-  std::vector<Delta> deltas;    ///< per moving object
+  std::vector<DepthRow> rows;  ///< this frame's rows, pair by pair, filled by the contacts' pass
+  std::vector<Limit> limits;   ///< this frame's pairs with rows
+  std::vector<Delta> deltas;   ///< per moving object
 };
 
 /// Projects the step from `before` to `after` (per moving object of `objects`) onto the
 /// limits of the pairs of the first `rowCount` rows of `scratch` (each row's limit and
-/// objects set by the caller, a pair's rows in one run) as the file comment says; `dtS` turns removed motion into removed velocity. scratch.deltas then
-/// hold what each body was refused.
-DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects, std::span<const RigidBodyState> before,
-                            std::span<RigidBodyState> after, DepthLimitScratch& scratch, std::size_t rowCount,
-                            double dtS) noexcept;
+/// objects set by the caller, a pair's rows in one run) as the file comment says; `dtS` turns removed motion
+/// into removed velocity. scratch.deltas then hold what each body was refused.
+DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
+                            std::span<const RigidBodyState> before, std::span<RigidBodyState> after,
+                            DepthLimitScratch& scratch, std::size_t rowCount, double dtS) noexcept;
 
 }  // namespace voxhap

@@ -11,7 +11,8 @@ Voxmap voxelizeObjects(std::span<const SceneObject* const> objects, const Voxeli
   return voxelizeCached(objects, options, CacheOptions{{}, false}, progress).voxelized.voxmap;
 }
 
-Pointshell pointshellOf(const SceneObject& object, const PointshellOptions& options, const ProgressFn& progress) {
+Pointshell pointshellOf(const SceneObject& object, const PointshellOptions& options,
+                        const ProgressFn& progress) {
   const SceneObject* objects[] = {&object};
   return pointshellCached(objects, options, CacheOptions{{}, false}, progress).pointshell;
 }
@@ -43,7 +44,8 @@ BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& moving
     }
   }
   if (staticPager && !options.sim.coherence.enabled) {
-    throw Error("paging the static voxels within a memory budget needs time-critical sampling (not brute force)");
+    throw Error(
+        "paging the static voxels within a memory budget needs time-critical sampling (not brute force)");
   }
 
   std::vector<MovingObjectModel> objects;
@@ -51,7 +53,8 @@ BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& moving
     const SceneObject& source = *moving[i];
     MovingObjectModel object;
     object.name = source.name;
-    object.body = makeRigidBodyModel(computeMassProperties(source, objectDensityKgPerM3(source)), source.name);
+    object.body =
+        makeRigidBodyModel(computeMassProperties(source, objectDensityKgPerM3(source)), source.name);
     PointshellOptions shellOptions;
     shellOptions.pointSpacingM = options.pointSpacingM;
     shellOptions.displacementM = options.pointDisplacementM;

@@ -30,7 +30,8 @@ using PointshellFn = std::function<Pointshell(const SceneObject& object, const P
 Voxmap voxelizeObjects(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
                        const ProgressFn& progress);
 /// Builds the pointshell of `object`, now (cache off).
-Pointshell pointshellOf(const SceneObject& object, const PointshellOptions& options, const ProgressFn& progress);
+Pointshell pointshellOf(const SceneObject& object, const PointshellOptions& options,
+                        const ProgressFn& progress);
 
 struct SceneModelOptions {
   SimOptions sim;

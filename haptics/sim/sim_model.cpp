@@ -12,7 +12,9 @@
 namespace voxhap {
 namespace {
 
-bool hasVoxels(const Voxmap& voxmap) { return voxmap.grid().voxelSizeM > 0.0; }
+bool hasVoxels(const Voxmap& voxmap) {
+  return voxmap.grid().voxelSizeM > 0.0;
+}
 
 /// The inertia a contact on `object` sees at its worst, kg: the smaller of the mass and
 /// 1 / max over points r and unit directions u of (r × u)ᵀ·I⁻¹·(r × u), the rotational
@@ -89,8 +91,9 @@ SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxm
       const MovingObjectModel& b = model.objects[static_cast<std::size_t>(j)];
       const bool aIsShell = a.shell.size() <= b.shell.size();
       const MovingObjectModel& voxels = aIsShell ? b : a;
-      if (!hasVoxels(voxels.voxmap)) throw Error(voxels.name + ": a moving object needs a voxmap to collide with " +
-                                                 (aIsShell ? a.name : b.name));
+      if (!hasVoxels(voxels.voxmap))
+        throw Error(voxels.name + ": a moving object needs a voxmap to collide with " +
+                    (aIsShell ? a.name : b.name));
       model.pairs.push_back({aIsShell ? i : j, aIsShell ? j : i, {}});
     }
   }

@@ -28,9 +28,9 @@ inline constexpr int kStaticEnvironment = -1;
 
 /// Contact stiffness of a pair, as ω_c·dt: k_total = M·ω_c² with M the smallest inertia
 /// a contact force at any point of either body meets (sim_model.cpp), so that neither
-/// translation nor rotation of either body sees a contact frequency above ω_c. With the coupling's (ω·dt)² = 0.0625 and damping term 0.5 (virtual_coupling.cpp),
-/// a contact at (0.5)² = 0.25 with damping ratio 0.5 adds a = 0.25 and c = 0.5: the sum
-/// a + 2c = 1.31 stays far inside the semi-implicit Euler bound a + 2c < 4.
+/// translation nor rotation of either body sees a contact frequency above ω_c. With the coupling's (ω·dt)² =
+/// 0.0625 and damping term 0.5 (virtual_coupling.cpp), a contact at (0.5)² = 0.25 with damping ratio 0.5 adds
+/// a = 0.25 and c = 0.5: the sum a + 2c = 1.31 stays far inside the semi-implicit Euler bound a + 2c < 4.
 inline constexpr double kContactFrequencyTimesDt = 0.5;
 /// Damping ratio of the contact spring at its capped total stiffness.
 inline constexpr double kContactDampingRatio = 0.5;
@@ -39,9 +39,9 @@ inline constexpr double kContactDampingRatio = 0.5;
 struct MovingObjectModel {
   std::string name;
   RigidBodyModel body;
-  Pointshell shell;              ///< object-local frame
-  Voxmap voxmap;                 ///< object-local frame; empty grid when never the voxmap of a pair
-  double shellRadiusM = 0.0;     ///< largest distance of a point from the centre of mass, m
+  Pointshell shell;                  ///< object-local frame
+  Voxmap voxmap;                     ///< object-local frame; empty grid when never the voxmap of a pair
+  double shellRadiusM = 0.0;         ///< largest distance of a point from the centre of mass, m
   glm::dvec3 shellCentreLocal{0.0};  ///< centre of the pointshell's bounding sphere, m
   double shellBoundRadiusM = 0.0;    ///< radius of that sphere, m
   /// Upper bound of MaxTravel near contact, the most any of its points may move in a
@@ -49,13 +49,13 @@ struct MovingObjectModel {
   /// pair move (infinite when it has no pair). Far from everything the bound rises
   /// (PairModel::farTravelM); Eq. 2 scales it down when the capacity is short.
   double maxTravelM = 0.0;
-  bool coupled = false;          ///< a handle drives it through a virtual coupling
-  CouplingGains gains;           ///< of that coupling
+  bool coupled = false;  ///< a handle drives it through a virtual coupling
+  CouplingGains gains;   ///< of that coupling
 };
 
 /// One pair that can touch.
 struct PairModel {
-  int shellObject = 0;                   ///< index of the moving object sampled as points
+  int shellObject = 0;                    ///< index of the moving object sampled as points
   int voxmapObject = kStaticEnvironment;  ///< index of the moving object sampled as voxels, or static
   ContactParams params;
   std::array<std::uint8_t, 3> fieldShifts{};  ///< per point feature, from fieldShiftsByFeature
@@ -85,8 +85,8 @@ struct CoherenceOptions {
 };
 
 struct SimModel {
-  double dtS = 1e-3;                  ///< frame period, s
-  glm::dvec3 gravityWorld{0.0};       ///< m/s²; zero: parts are held, not dropped
+  double dtS = 1e-3;             ///< frame period, s
+  glm::dvec3 gravityWorld{0.0};  ///< m/s²; zero: parts are held, not dropped
   /// World frame; none: nothing static collides. When paged (Voxmap::paged), its words
   /// are the residency of a SimWorkspace, written by that workspace's pager alone.
   std::optional<Voxmap> staticVoxmap;
@@ -105,8 +105,9 @@ struct SimModel {
   }
 
   const Voxmap& voxmapOf(const PairModel& pair) const {
-    return pair.voxmapObject == kStaticEnvironment ? *staticVoxmap
-                                                   : objects[static_cast<std::size_t>(pair.voxmapObject)].voxmap;
+    return pair.voxmapObject == kStaticEnvironment
+               ? *staticVoxmap
+               : objects[static_cast<std::size_t>(pair.voxmapObject)].voxmap;
   }
 };
 

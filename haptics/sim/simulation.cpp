@@ -32,7 +32,8 @@ bool limitTravel(const RigidBodyState& before, RigidBodyState& after, double rad
 
 }  // namespace
 
-bool setForceLayer(const SimModel& model, SimState& state, SimWorkspace& workspace, std::uint8_t value) noexcept {
+bool setForceLayer(const SimModel& model, SimState& state, SimWorkspace& workspace,
+                   std::uint8_t value) noexcept {
   if (!model.forceLayerInRange(value)) return false;
   state.forceLayer = value;
   for (PairCoherence& c : workspace.coherence) c.setForceLayer(value);
@@ -69,7 +70,8 @@ void planFrame(const SimModel& model, const SimState& state, SimWorkspace& ws, C
     PairFrame& frame = ws.pairFrames[p];
     const Voxmap& voxmap = model.voxmapOf(pair);
     const Pose shellToVoxmap = shellToVoxmapPose(model, state, pair);
-    frame.inRange = inRange(model.objects[static_cast<std::size_t>(pair.shellObject)], shellToVoxmap, voxmap.grid());
+    frame.inRange =
+        inRange(model.objects[static_cast<std::size_t>(pair.shellObject)], shellToVoxmap, voxmap.grid());
     if (frame.inRange) frame.transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
     ws.counters.pairsSkipped += frame.inRange ? 0 : 1;
     const bool far = coherent && (!frame.inRange || ws.coherence[p].onlyCollapsed());
@@ -119,8 +121,9 @@ void planFrame(const SimModel& model, const SimState& state, SimWorkspace& ws, C
 
 /// Step 2 for one pair in range: its contacts, in ws.contacts; returns how many, and
 /// adds its tests to `tested` and its lookups of paged-out voxels to `missing`.
-std::uint32_t findContacts(const SimModel& model, const SimState& state, SimWorkspace& ws, CoherenceFrame& plan,
-                           std::size_t p, std::uint32_t& tested, std::uint32_t& missing) {
+std::uint32_t findContacts(const SimModel& model, const SimState& state, SimWorkspace& ws,
+                           CoherenceFrame& plan, std::size_t p, std::uint32_t& tested,
+                           std::uint32_t& missing) {
   const PairModel& pair = model.pairs[p];
   const Pointshell& shell = model.objects[static_cast<std::size_t>(pair.shellObject)].shell;
   const Voxmap& voxmap = model.voxmapOf(pair);
@@ -131,7 +134,8 @@ std::uint32_t findContacts(const SimModel& model, const SimState& state, SimWork
   if (ws.coherence.empty()) {
     const auto points = static_cast<std::uint32_t>(shell.size());
     tested += points;
-    return samplePoints(shell, voxmap, transform, pair.fieldShifts, sampledLayer, 0, points, ws.contacts.data());
+    return samplePoints(shell, voxmap, transform, pair.fieldShifts, sampledLayer, 0, points,
+                        ws.contacts.data());
   }
   PairCoherence& coherence = ws.coherence[p];
   const double travelM = plan.travelScale * ws.pairFrames[p].relativeTravelBoundM;
@@ -140,7 +144,7 @@ std::uint32_t findContacts(const SimModel& model, const SimState& state, SimWork
   const std::uint32_t due = coherence.collectDue(travelM, ws.due);
   tested += due;
   const PairCoherence::Tested t = coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
-                                                   std::span(ws.due.data(), due), ws.contacts.data(), pager);
+                                                    std::span(ws.due.data(), due), ws.contacts.data(), pager);
   plan.drifted += t.drifted;
   missing += t.missing;
   coherence.endFrame(travelM);
@@ -166,7 +170,9 @@ void suspendOrResume(SimWorkspace& ws, bool suspend, std::chrono::steady_clock::
   if (seconds > kMaxSuspensionS) ws.stopped = true;
 }
 
-bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 bool finite(const HandleInput& h) {
   const glm::dquat& q = h.poseWorld.orientation;
@@ -198,7 +204,8 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     const PairModel& pair = model.pairs[p];
     if (!ws.pairFrames[p].inRange) {
-      if (!ws.coherence.empty()) ws.coherence[p].skipFrame(plan.travelScale * ws.pairFrames[p].relativeTravelBoundM);
+      if (!ws.coherence.empty())
+        ws.coherence[p].skipFrame(plan.travelScale * ws.pairFrames[p].relativeTravelBoundM);
       continue;
     }
     std::uint32_t tested = 0;
@@ -211,10 +218,9 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     const double limitM = kDepthLimitVoxels * model.voxmapOf(pair).grid().voxelSizeM;
     const DepthRowSink sink{std::span(ws.depthScratch.rows).subspan(rowCount),
                             limitM - ws.pairFrames[p].relativeTravelBoundM};
-    const PairWrench w = tangentPlaneWrench(shellObject.shell, model.voxmapOf(pair), params,
-                                            motionOf(model, state, pair.shellObject),
-                                            motionOf(model, state, pair.voxmapObject),
-                                            std::span(ws.contacts.data(), found), &sink);
+    const PairWrench w = tangentPlaneWrench(
+        shellObject.shell, model.voxmapOf(pair), params, motionOf(model, state, pair.shellObject),
+        motionOf(model, state, pair.voxmapObject), std::span(ws.contacts.data(), found), &sink);
     for (std::size_t r = rowCount; r < rowCount + w.depthRows; ++r) {
       DepthRow& row = ws.depthScratch.rows[r];
       row.limitM = limitM;
@@ -246,7 +252,8 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
   // what the sweeps took beyond the mandatory tests, over what Eq. 3 asked (enough of
   // them to be a fair sample): a smoothed ratio, at least one
   const double asked = plan.travelScale * plan.plannedLoad / ws.sweepExcess;
-  const double taken = static_cast<double>(testedInFrame + plan.chunkTests) - static_cast<double>(plan.mandatory);
+  const double taken =
+      static_cast<double>(testedInFrame + plan.chunkTests) - static_cast<double>(plan.mandatory);
   if (asked >= 100.0 && !plan.deadlineMissed) {
     ws.sweepExcess = std::max(1.0, 0.95 * ws.sweepExcess + 0.05 * taken / asked);
   }
@@ -276,8 +283,9 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     if (object.coupled && i < inputs.handles.size()) {
       const HandleInput& handle = inputs.handles[i];
       if (finite(handle)) {
-        const CouplingWrench coupling = couplingWrench(object.gains, handle.poseWorld, handle.velocity.linearWorld,
-                                                       handle.velocity.angularWorld, object.body, body);
+        const CouplingWrench coupling =
+            couplingWrench(object.gains, handle.poseWorld, handle.velocity.linearWorld,
+                           handle.velocity.angularWorld, object.body, body);
         // the body feels what the device renders (negated), never more: a handle that leads
         // far pulls with the device's largest force, not with a spring stretched without bound
         const CouplingWrench felt = deviceFeedback(coupling, model.deviceLimits);
@@ -298,7 +306,8 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     f.travelLimited = limitTravel(ws.beforeStep[i], body, object.shellRadiusM, f.maxTravelM);
     ws.counters.travelLimitedFrames += f.travelLimited ? 1 : 0;
   }
-  outputs.depthLimit = limitDepths(model.objects, ws.beforeStep, state.bodies, ws.depthScratch, rowCount, model.dtS);
+  outputs.depthLimit =
+      limitDepths(model.objects, ws.beforeStep, state.bodies, ws.depthScratch, rowCount, model.dtS);
   ws.counters.depthLimitedFrames += outputs.depthLimit.binding > 0 ? 1 : 0;
   for (std::size_t i = 0; i < n && outputs.depthLimit.binding > 0; ++i) {
     // what the limits refused is the contacts' push beyond their springs
@@ -312,8 +321,9 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     // the projection moves points of the body by no more than it refused, but lever arms
     // could carry a far point past MaxTravel: hold it to MaxTravel again (a scaled step
     // still keeps every depth limit, depth_limit.h)
-    f.travelLimited = limitTravel(ws.beforeStep[i], state.bodies[i], model.objects[i].shellRadiusM, f.maxTravelM) ||
-                      f.travelLimited;
+    f.travelLimited =
+        limitTravel(ws.beforeStep[i], state.bodies[i], model.objects[i].shellRadiusM, f.maxTravelM) ||
+        f.travelLimited;
   }
   ++state.frame;
   state.timeS = static_cast<double>(state.frame) * model.dtS;

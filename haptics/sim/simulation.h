@@ -38,7 +38,8 @@ namespace voxhap {
 /// Moves the force layer of every pair to `value` (1 … the voxmaps' largest value) from
 /// the next frame on: a larger value keeps the objects further apart. Returns false and
 /// changes nothing when the value is out of range.
-bool setForceLayer(const SimModel& model, SimState& state, SimWorkspace& workspace, std::uint8_t value) noexcept;
+bool setForceLayer(const SimModel& model, SimState& state, SimWorkspace& workspace,
+                   std::uint8_t value) noexcept;
 
 /// Advances `state` by one frame of `inputs`, writing `outputs` (sized by
 /// makeFrameOutputs) and returning what went wrong.

@@ -1,13 +1,13 @@
 #include "haptics/voxel/cache_file.h"
 
-#include <unistd.h>
-
 #include <array>
 #include <atomic>
 #include <cerrno>
 #include <cstddef>
 #include <cstring>
 #include <vector>
+
+#include <unistd.h>
 
 #include "haptics/core/error.h"
 
@@ -74,7 +74,8 @@ CacheFileReader::CacheFileReader(const std::filesystem::path& path, CacheKind ki
   in_.open(path, std::ios::binary);
   if (!in_) throw CacheFileError(std::string("cannot be opened: ") + std::strerror(errno));
   Header header;
-  if (fileBytes < sizeof header + kTrailerBytes || !in_.read(reinterpret_cast<char*>(&header), sizeof header)) {
+  if (fileBytes < sizeof header + kTrailerBytes ||
+      !in_.read(reinterpret_cast<char*>(&header), sizeof header)) {
     throw CacheFileError("is truncated (" + std::to_string(fileBytes) + " bytes)");
   }
   if (header.magic != kMagic) throw CacheFileError("is not a Voxhap cache file (bad magic)");
@@ -87,8 +88,9 @@ CacheFileReader::CacheFileReader(const std::filesystem::path& path, CacheKind ki
   }
   const std::uint64_t expected = sizeof header + header.payloadBytes + kTrailerBytes;
   if (header.payloadBytes > fileBytes || expected != fileBytes) {
-    throw CacheFileError((fileBytes < expected ? "is truncated (" : "is corrupt (") + std::to_string(fileBytes) +
-                         " bytes, the header says " + std::to_string(expected) + ")");
+    throw CacheFileError((fileBytes < expected ? "is truncated (" : "is corrupt (") +
+                         std::to_string(fileBytes) + " bytes, the header says " + std::to_string(expected) +
+                         ")");
   }
   remaining_ = header.payloadBytes;
   payloadBytes_ = header.payloadBytes;
@@ -114,7 +116,8 @@ void CacheFileReader::read(void* data, std::size_t bytes) {
 }
 
 void CacheFileReader::finish() {
-  if (remaining_ != 0) throw CacheFileError("is corrupt (" + std::to_string(remaining_) + " bytes left unread)");
+  if (remaining_ != 0)
+    throw CacheFileError("is corrupt (" + std::to_string(remaining_) + " bytes left unread)");
   Digest128 stored;
   if (!in_.read(reinterpret_cast<char*>(&stored.lo), sizeof stored.lo) ||
       !in_.read(reinterpret_cast<char*>(&stored.hi), sizeof stored.hi)) {

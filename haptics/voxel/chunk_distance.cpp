@@ -64,8 +64,10 @@ void chessboardChunkTransform(std::span<std::uint8_t> field, const glm::ivec3& d
     std::vector<int> s, t;
     std::vector<std::uint8_t> in, out;
     explicit Scratch(int length)
-        : s(static_cast<std::size_t>(length)), t(static_cast<std::size_t>(length)),
-          in(static_cast<std::size_t>(length) * kBatch), out(static_cast<std::size_t>(length) * kBatch) {}
+        : s(static_cast<std::size_t>(length)),
+          t(static_cast<std::size_t>(length)),
+          in(static_cast<std::size_t>(length) * kBatch),
+          out(static_cast<std::size_t>(length) * kBatch) {}
   };
 
   // x: lines are contiguous; one z layer per task
@@ -94,7 +96,8 @@ void chessboardChunkTransform(std::span<std::uint8_t> field, const glm::ivec3& d
       transformLine(static_cast<int>(length), &scratch.in[b], &scratch.out[b], kBatch, scratch.s.data(),
                     scratch.t.data());
     }
-    for (std::size_t k = 0; k < length; ++k) std::copy_n(&scratch.out[k * kBatch], lines, base + k * lineStride);
+    for (std::size_t k = 0; k < length; ++k)
+      std::copy_n(&scratch.out[k * kBatch], lines, base + k * lineStride);
   };
   // along y: one z layer per task
   parallelFor(nz, threads, [&](std::size_t z) {

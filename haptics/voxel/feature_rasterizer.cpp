@@ -34,7 +34,9 @@ struct VoxelBox {
   bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
 };
 
-VoxelBox intersect(const VoxelBox& a, const VoxelBox& b) { return {glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)}; }
+VoxelBox intersect(const VoxelBox& a, const VoxelBox& b) {
+  return {glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)};
+}
 
 class Rasterizer {
 public:
@@ -93,8 +95,10 @@ public:
         vMax = std::max({vMax, va, vb});
       }
       if (vMin > vMax) continue;
-      const int ivLo = std::max(box.lo[v], static_cast<int>(std::floor((vMin - grid_.originLocal[v]) / s - kTouchFraction)));
-      const int ivHi = std::min(box.hi[v], static_cast<int>(std::floor((vMax - grid_.originLocal[v]) / s + kTouchFraction)));
+      const int ivLo = std::max(
+          box.lo[v], static_cast<int>(std::floor((vMin - grid_.originLocal[v]) / s - kTouchFraction)));
+      const int ivHi = std::min(
+          box.hi[v], static_cast<int>(std::floor((vMax - grid_.originLocal[v]) / s + kTouchFraction)));
       for (int iv = ivLo; iv <= ivHi; ++iv) {
         const double v0 = grid_.originLocal[v] + iv * s;
         // the plane's range along w over this column's footprint
@@ -176,14 +180,16 @@ private:
 
 }  // namespace
 
-HyperchunkBlocks<std::uint8_t> rasterizeFeatures(const VoxelGrid& grid, std::span<const FeatureGeometry> parts,
-                                                 int threads, const ProgressFn& progress) {
+HyperchunkBlocks<std::uint8_t> rasterizeFeatures(const VoxelGrid& grid,
+                                                 std::span<const FeatureGeometry> parts, int threads,
+                                                 const ProgressFn& progress) {
   HyperchunkBlocks<std::uint8_t> out(grid.dimsHyper);
   Rasterizer rasterizer(grid, out);
 
   // bin every triangle, feature edge and feature vertex to the hyperchunks its box meets
   std::vector<Item> items;
-  auto bin = [&](const glm::dvec3& lo, const glm::dvec3& hi, ItemKind kind, std::size_t part, std::size_t index) {
+  auto bin = [&](const glm::dvec3& lo, const glm::dvec3& hi, ItemKind kind, std::size_t part,
+                 std::size_t index) {
     const VoxelBox box = rasterizer.boxOf(lo, hi);
     const glm::ivec3 hLo = box.lo >> (kChunkEdgeLog2 + kHyperEdgeLog2);
     const glm::ivec3 hHi = box.hi >> (kChunkEdgeLog2 + kHyperEdgeLog2);
@@ -217,35 +223,42 @@ HyperchunkBlocks<std::uint8_t> rasterizeFeatures(const VoxelGrid& grid, std::spa
       bin(a, a, ItemKind::Vertex, p, v);
     }
   }
-  std::stable_sort(items.begin(), items.end(), [](const Item& x, const Item& y) { return x.hyper < y.hyper; });
+  std::stable_sort(items.begin(), items.end(),
+                   [](const Item& x, const Item& y) { return x.hyper < y.hyper; });
   std::vector<std::size_t> begins;
   for (std::size_t i = 0; i < items.size(); ++i) {
     if (i == 0 || items[i].hyper != items[i - 1].hyper) begins.push_back(i);
   }
   begins.push_back(items.size());
 
-  parallelFor(begins.size() - 1, threads, [&](std::size_t g) {
-    const std::uint32_t h = items[begins[g]].hyper;
-    const glm::ivec3 dims = grid.dimsHyper;
-    const glm::ivec3 ijkHyper(static_cast<int>(h % static_cast<std::uint32_t>(dims.x)),
-                              static_cast<int>((h / static_cast<std::uint32_t>(dims.x)) % static_cast<std::uint32_t>(dims.y)),
-                              static_cast<int>(h / static_cast<std::uint32_t>(dims.x * dims.y)));
-    const VoxelBox region{ijkHyper * kHyperEdgeVoxels, ijkHyper * kHyperEdgeVoxels + (kHyperEdgeVoxels - 1)};
-    for (std::size_t i = begins[g]; i < begins[g + 1]; ++i) {
-      const Item& item = items[i];
-      if (item.kind == ItemKind::Triangle) {
-        const TriangleMesh& mesh = *parts[item.part].mesh;
-        const glm::uvec3& tri = mesh.triangles[item.index];
-        rasterizer.triangle(glm::dvec3(mesh.positionsWorld[tri.x]), glm::dvec3(mesh.positionsWorld[tri.y]),
-                            glm::dvec3(mesh.positionsWorld[tri.z]), region);
-      } else if (item.kind == ItemKind::Edge) {
-        const auto& edge = parts[item.part].features->featureEdges[item.index];
-        rasterizer.segment(glm::dvec3(edge[0]), glm::dvec3(edge[1]), region);
-      } else {
-        rasterizer.vertex(glm::dvec3(parts[item.part].features->featureVertices[item.index]), region);
-      }
-    }
-  }, progress);
+  parallelFor(
+      begins.size() - 1, threads,
+      [&](std::size_t g) {
+        const std::uint32_t h = items[begins[g]].hyper;
+        const glm::ivec3 dims = grid.dimsHyper;
+        const glm::ivec3 ijkHyper(
+            static_cast<int>(h % static_cast<std::uint32_t>(dims.x)),
+            static_cast<int>((h / static_cast<std::uint32_t>(dims.x)) % static_cast<std::uint32_t>(dims.y)),
+            static_cast<int>(h / static_cast<std::uint32_t>(dims.x * dims.y)));
+        const VoxelBox region{ijkHyper * kHyperEdgeVoxels,
+                              ijkHyper * kHyperEdgeVoxels + (kHyperEdgeVoxels - 1)};
+        for (std::size_t i = begins[g]; i < begins[g + 1]; ++i) {
+          const Item& item = items[i];
+          if (item.kind == ItemKind::Triangle) {
+            const TriangleMesh& mesh = *parts[item.part].mesh;
+            const glm::uvec3& tri = mesh.triangles[item.index];
+            rasterizer.triangle(glm::dvec3(mesh.positionsWorld[tri.x]),
+                                glm::dvec3(mesh.positionsWorld[tri.y]),
+                                glm::dvec3(mesh.positionsWorld[tri.z]), region);
+          } else if (item.kind == ItemKind::Edge) {
+            const auto& edge = parts[item.part].features->featureEdges[item.index];
+            rasterizer.segment(glm::dvec3(edge[0]), glm::dvec3(edge[1]), region);
+          } else {
+            rasterizer.vertex(glm::dvec3(parts[item.part].features->featureVertices[item.index]), region);
+          }
+        }
+      },
+      progress);
   return out;
 }
 

@@ -28,7 +28,8 @@ struct FeatureGeometry {
 /// Marks every voxel that a triangle overlaps (exact triangle/box test, boxes closed),
 /// that a feature edge overlaps, or that holds a feature vertex. Chunks with no mark
 /// get no block. Uses `threads` threads (0: all cores); deterministic.
-HyperchunkBlocks<std::uint8_t> rasterizeFeatures(const VoxelGrid& grid, std::span<const FeatureGeometry> parts,
-                                                 int threads, const ProgressFn& progress = {});
+HyperchunkBlocks<std::uint8_t> rasterizeFeatures(const VoxelGrid& grid,
+                                                 std::span<const FeatureGeometry> parts, int threads,
+                                                 const ProgressFn& progress = {});
 
 }  // namespace voxhap

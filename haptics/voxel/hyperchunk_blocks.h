@@ -28,8 +28,8 @@ public:
   std::size_t hyperIndex(const glm::ivec3& ijkHyper) const {
     return static_cast<std::size_t>(ijkHyper.x) +
            static_cast<std::size_t>(dimsHyper_.x) *
-               (static_cast<std::size_t>(ijkHyper.y) + static_cast<std::size_t>(dimsHyper_.y) *
-                                                           static_cast<std::size_t>(ijkHyper.z));
+               (static_cast<std::size_t>(ijkHyper.y) +
+                static_cast<std::size_t>(dimsHyper_.y) * static_cast<std::size_t>(ijkHyper.z));
   }
   bool containsHyper(const glm::ivec3& h) const {
     return h.x >= 0 && h.y >= 0 && h.z >= 0 && h.x < dimsHyper_.x && h.y < dimsHyper_.y && h.z < dimsHyper_.z;

@@ -35,9 +35,9 @@ public:
 private:
   int range_;
   int n_;
-  std::vector<std::uint8_t> a_;        // after the x pass: c × n × n
-  std::vector<std::uint8_t> b_;        // after the y pass: c × c × n
-  std::vector<std::uint8_t> rowNear_;  // per row of a_: holds a value below far
+  std::vector<std::uint8_t> a_;          // after the x pass: c × n × n
+  std::vector<std::uint8_t> b_;          // after the y pass: c × c × n
+  std::vector<std::uint8_t> rowNear_;    // per row of a_: holds a value below far
   std::vector<std::uint8_t> planeNear_;  // per z plane of b_: holds a value below far
 };
 

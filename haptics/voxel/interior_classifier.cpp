@@ -35,8 +35,10 @@ InteriorClassifier::InteriorClassifier(const VoxelGrid& grid, std::span<const Tr
   for (int axis = 0; axis < 3; ++axis) rows_[axis] = castRows(axis, meshes, scene, lo, hi, threads);
 }
 
-InteriorClassifier::AxisRows InteriorClassifier::castRows(int axis, std::span<const TriangleMesh* const> meshes,
-                                                          const EmbreeScene& scene, const glm::ivec3& boundsLo,
+InteriorClassifier::AxisRows InteriorClassifier::castRows(int axis,
+                                                          std::span<const TriangleMesh* const> meshes,
+                                                          const EmbreeScene& scene,
+                                                          const glm::ivec3& boundsLo,
                                                           const glm::ivec3& boundsHi, int threads) const {
   const int b = (axis + 1) % 3;
   const int c = (axis + 2) % 3;
@@ -137,7 +139,8 @@ void InteriorClassifier::addVotes(const AxisRows& rows, const glm::ivec3& lo, co
       const int rb = jb - rows.lo.x;
       const int rc = jc - rows.lo.y;
       if (rb < 0 || rc < 0 || rb >= rows.size.x || rc >= rows.size.y) continue;  // no surface on this row
-      const std::size_t row = static_cast<std::size_t>(rb) + static_cast<std::size_t>(rows.size.x) * static_cast<std::size_t>(rc);
+      const std::size_t row =
+          static_cast<std::size_t>(rb) + static_cast<std::size_t>(rows.size.x) * static_cast<std::size_t>(rc);
       const Crossing* next = rows.crossings.data() + rows.begin[row];
       const Crossing* last = rows.crossings.data() + rows.begin[row + 1];
       if (next == last) continue;
@@ -149,7 +152,8 @@ void InteriorClassifier::addVotes(const AxisRows& rows, const glm::ivec3& lo, co
       for (; next != last; ++next) {
         const int runEnd = std::min(firstVoxelAfter(next->tVoxels), end);
         if (partsInside > 0) {
-          for (int ja = std::max(runStart, first); ja < runEnd; ++ja) ++line[static_cast<std::size_t>(ja - first) * strides[a]];
+          for (int ja = std::max(runStart, first); ja < runEnd; ++ja)
+            ++line[static_cast<std::size_t>(ja - first) * strides[a]];
         }
         runStart = std::max(runStart, runEnd);
         std::uint8_t& state = partInside[next->part];
@@ -160,14 +164,18 @@ void InteriorClassifier::addVotes(const AxisRows& rows, const glm::ivec3& lo, co
       if (partsInside > 0) {
         for (int ja = runStart; ja < end; ++ja) ++line[static_cast<std::size_t>(ja - first) * strides[a]];
       }
-      for (const Crossing* k = rows.crossings.data() + rows.begin[row]; k != next; ++k) partInside[k->part] = 0;
+      for (const Crossing* k = rows.crossings.data() + rows.begin[row]; k != next; ++k)
+        partInside[k->part] = 0;
       if (next != last) partInside[next->part] = 0;
     }
   }
 }
 
-void InteriorClassifier::votes(const glm::ivec3& lo, const glm::ivec3& size, std::vector<std::uint8_t>& out) const {
-  out.assign(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * static_cast<std::size_t>(size.z), 0);
+void InteriorClassifier::votes(const glm::ivec3& lo, const glm::ivec3& size,
+                               std::vector<std::uint8_t>& out) const {
+  out.assign(
+      static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * static_cast<std::size_t>(size.z),
+      0);
   if (partCount_ == 0) return;
   for (const AxisRows& rows : rows_) {
     if (!rows.begin.empty()) addVotes(rows, lo, size, out);

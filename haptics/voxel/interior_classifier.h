@@ -29,8 +29,8 @@ class EmbreeScene;
 class InteriorClassifier {
 public:
   /// Casts all rows that meet the meshes' bounds (`threads` threads, 0: all cores).
-  InteriorClassifier(const VoxelGrid& grid, std::span<const TriangleMesh* const> meshes, const EmbreeScene& scene,
-                     int threads);
+  InteriorClassifier(const VoxelGrid& grid, std::span<const TriangleMesh* const> meshes,
+                     const EmbreeScene& scene, int threads);
 
   /// Votes (0 … 3) that each voxel of the box [lo, lo + size) is inside, x fastest.
   void votes(const glm::ivec3& lo, const glm::ivec3& size, std::vector<std::uint8_t>& out) const;
@@ -46,8 +46,8 @@ private:
   /// Crossings of every row parallel to one axis, sorted along each row.
   struct AxisRows {
     int axis = 0;
-    glm::ivec2 lo{0};    // first row's coordinates along the two other axes
-    glm::ivec2 size{0};  // rows cast along the two other axes (the meshes' bounds)
+    glm::ivec2 lo{0};                  // first row's coordinates along the two other axes
+    glm::ivec2 size{0};                // rows cast along the two other axes (the meshes' bounds)
     std::vector<std::uint32_t> begin;  // per row, index of its first crossing; one more at the end
     std::vector<Crossing> crossings;
   };

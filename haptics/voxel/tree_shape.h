@@ -8,13 +8,13 @@
 
 namespace voxhap {
 
-inline constexpr int kChunkEdgeLog2 = 3;                                  ///< log2 voxels per chunk edge
-inline constexpr int kChunkEdgeVoxels = 1 << kChunkEdgeLog2;              ///< 8
+inline constexpr int kChunkEdgeLog2 = 3;                      ///< log2 voxels per chunk edge
+inline constexpr int kChunkEdgeVoxels = 1 << kChunkEdgeLog2;  ///< 8
 inline constexpr int kVoxelsPerChunk = kChunkEdgeVoxels * kChunkEdgeVoxels * kChunkEdgeVoxels;  ///< 512
-inline constexpr int kHyperEdgeLog2 = 3;                                  ///< log2 chunks per hyperchunk edge
-inline constexpr int kHyperEdgeChunks = 1 << kHyperEdgeLog2;              ///< 8
+inline constexpr int kHyperEdgeLog2 = 3;                      ///< log2 chunks per hyperchunk edge
+inline constexpr int kHyperEdgeChunks = 1 << kHyperEdgeLog2;  ///< 8
 inline constexpr int kChunksPerHyper = kHyperEdgeChunks * kHyperEdgeChunks * kHyperEdgeChunks;  ///< 512
-inline constexpr int kHyperEdgeVoxels = kChunkEdgeVoxels * kHyperEdgeChunks;  ///< 64
+inline constexpr int kHyperEdgeVoxels = kChunkEdgeVoxels * kHyperEdgeChunks;                    ///< 64
 
 /// Index of a voxel inside its chunk (x fastest), 0 … 511, from voxel coordinates.
 inline constexpr std::uint32_t voxelInChunk(const glm::ivec3& ijkVoxel) {

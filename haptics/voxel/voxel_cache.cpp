@@ -1,10 +1,9 @@
 #include "haptics/voxel/voxel_cache.h"
 
-#include <optional>
-
 #include <array>
 #include <chrono>
 #include <functional>
+#include <optional>
 
 #include "haptics/core/error.h"
 #include "haptics/core/parallel.h"
@@ -113,8 +112,8 @@ void putGrid(CacheFileWriter& w, const VoxelGrid& grid, const VoxelEncoding& enc
 
 /// The stats' counters in file order.
 std::array<std::uint64_t*, 11> counters(VoxelizeStats& s) {
-  return {&s.interiorVoxels, &s.surfaceVoxels, &s.distanceVoxels,     &s.edgeVoxels,
-          &s.vertexVoxels,   &s.vertexPoints,  &s.edgePoints,         &s.surfacePoints,
+  return {&s.interiorVoxels, &s.surfaceVoxels,      &s.distanceVoxels,   &s.edgeVoxels,
+          &s.vertexVoxels,   &s.vertexPoints,       &s.edgePoints,       &s.surfacePoints,
           &s.triangles,      &s.polygonsAfterMerge, &s.voteDisagreements};
 }
 
@@ -195,7 +194,8 @@ Pointshell loadPointshell(CacheFileReader& r, const PointshellOptions& options) 
   bool valid = p.normalsLocal.size() == n && p.features.size() == n && !p.chunkBegin.empty() &&
                p.chunkBegin.front() == 0 && p.chunkBegin.back() == n &&
                p.chunkCentroidsLocal.size() + 1 == p.chunkBegin.size();
-  for (std::size_t c = 1; valid && c < p.chunkBegin.size(); ++c) valid = p.chunkBegin[c - 1] <= p.chunkBegin[c];
+  for (std::size_t c = 1; valid && c < p.chunkBegin.size(); ++c)
+    valid = p.chunkBegin[c - 1] <= p.chunkBegin[c];
   for (std::size_t i = 0; valid && i < n; ++i) valid = p.features[i] <= PointFeature::Vertex;
   if (!valid) throw CacheFileError("is corrupt (inconsistent pointshell arrays)");
   return p;
@@ -215,14 +215,16 @@ Digest128 voxmapKey(std::span<const SceneObject* const> objects, const VoxelizeO
   return hash.digest();
 }
 
-std::string voxmapFileName(const Digest128& key) { return "voxmap-" + key.hex() + ".vxc"; }
+std::string voxmapFileName(const Digest128& key) {
+  return "voxmap-" + key.hex() + ".vxc";
+}
 
 /// Opens the voxmap cache file `file` for paging within `budgetBytes`: everything but the
 /// voxel words is read, the words are only checksummed. Empty when the whole voxmap fits
 /// the budget. Throws CacheFileError on a bad file, voxhap::Error when the budget cannot
 /// hold even the voxmap's tables.
-std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& key, const VoxelizeOptions& options,
-                                        std::uint64_t budgetBytes) {
+std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& key,
+                                        const VoxelizeOptions& options, std::uint64_t budgetBytes) {
   CacheFileReader r(file, CacheKind::Voxmap, key);
   const auto [grid, encoding, stats] = readVoxmapHeader(r, options);
   auto hyper = r.getArray<std::uint32_t>();
@@ -236,15 +238,19 @@ std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& k
   r.skip(wordBytes);
   auto chunkDistances = r.getArray<std::uint8_t>();
   r.finish();
-  const std::string problem = Voxmap::validate(grid, encoding, hyper, chunks, wordBytes, chunkDistances.size());
+  const std::string problem =
+      Voxmap::validate(grid, encoding, hyper, chunks, wordBytes, chunkDistances.size());
   if (!problem.empty()) throw CacheFileError("is corrupt (" + problem + ")");
 
-  const std::size_t blockBytes = std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
+  const std::size_t blockBytes =
+      std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
   if (budgetBytes < tableBytes + blockBytes + Voxmap::kSlotOverheadBytes) {
-    throw Error("a voxel memory of " + std::to_string(budgetBytes) + " bytes cannot hold the voxmap's tables (" +
-                std::to_string(tableBytes) + " bytes) and one chunk of voxel words; allow more");
+    throw Error("a voxel memory of " + std::to_string(budgetBytes) +
+                " bytes cannot hold the voxmap's tables (" + std::to_string(tableBytes) +
+                " bytes) and one chunk of voxel words; allow more");
   }
-  const std::size_t slots = static_cast<std::size_t>((budgetBytes - tableBytes) / (blockBytes + Voxmap::kSlotOverheadBytes));
+  const std::size_t slots =
+      static_cast<std::size_t>((budgetBytes - tableBytes) / (blockBytes + Voxmap::kSlotOverheadBytes));
   std::vector<std::uint32_t> fileBlockOfEntry(chunks.size(), 0xFFFFFFFFu);
   for (std::size_t i = 0; i < chunks.size(); ++i) {
     if (chunks[i] & Voxmap::kUniform) continue;
@@ -253,7 +259,8 @@ std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& k
   }
   BudgetedVoxmap result;
   result.wordBytes = wordBytes;
-  result.voxmap = Voxmap::paged(grid, encoding, std::move(hyper), std::move(chunks), slots, std::move(chunkDistances));
+  result.voxmap =
+      Voxmap::paged(grid, encoding, std::move(hyper), std::move(chunks), slots, std::move(chunkDistances));
   result.pager = std::make_shared<VoxelPager>(result.voxmap.pagedArrays(), file, wordsOffset,
                                               std::move(fileBlockOfEntry), slots);
   return result;
@@ -261,8 +268,9 @@ std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& k
 
 }  // namespace
 
-BudgetedVoxmap voxelizeWithinBudget(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
-                                    const CacheOptions& cache, std::uint64_t budgetBytes, const ProgressFn& progress) {
+BudgetedVoxmap voxelizeWithinBudget(std::span<const SceneObject* const> objects,
+                                    const VoxelizeOptions& options, const CacheOptions& cache,
+                                    std::uint64_t budgetBytes, const ProgressFn& progress) {
   if (!cache.enabled || cache.directory.empty()) {
     throw Error("a voxel memory budget pages voxels from the voxel cache, which is off (--no-cache)");
   }
@@ -287,9 +295,11 @@ BudgetedVoxmap voxelizeWithinBudget(std::span<const SceneObject* const> objects,
     return result;
   }
   whole = CachedVoxelization{};  // free it before paging it back
-  if (!fs::exists(file, ec)) throw Error(file.string() + ": the voxmap could not be cached, so it cannot be paged");
+  if (!fs::exists(file, ec))
+    throw Error(file.string() + ": the voxmap could not be cached, so it cannot be paged");
   auto paged = openPaged(file, key, options, budgetBytes);
-  if (!paged) throw Error(file.string() + ": the voxmap fits its budget after all");  // unreachable: same sizes
+  if (!paged)
+    throw Error(file.string() + ": the voxmap fits its budget after all");  // unreachable: same sizes
   paged->warnings = std::move(result.warnings);
   return std::move(*paged);
 }
@@ -314,8 +324,9 @@ CachedVoxelization voxelizeCached(std::span<const SceneObject* const> objects, c
   return result;
 }
 
-CachedPointshell pointshellCached(std::span<const SceneObject* const> objects, const PointshellOptions& options,
-                                  const CacheOptions& cache, const ProgressFn& progress) {
+CachedPointshell pointshellCached(std::span<const SceneObject* const> objects,
+                                  const PointshellOptions& options, const CacheOptions& cache,
+                                  const ProgressFn& progress) {
   ContentHash hash = geometryHash(CacheKind::Pointshell, objects);
   hash.addDouble(options.pointSpacingM);
   hash.addDouble(options.displacementM);
@@ -331,7 +342,8 @@ CachedPointshell pointshellCached(std::span<const SceneObject* const> objects, c
         const auto start = std::chrono::steady_clock::now();
         const ObjectParts parts = partsWithFeatures(objects, options.pointSpacingM, options.threads);
         if (progress) progress(0.02);
-        result.pointshell = buildPointshell(parts.meshes, parts.features, options, stage(progress, 0.02, 1.0));
+        result.pointshell =
+            buildPointshell(parts.meshes, parts.features, options, stage(progress, 0.02, 1.0));
         result.buildS = secondsSince(start);
       },
       [&](CacheFileWriter& w) { savePointshell(w, result.pointshell); });

@@ -35,23 +35,23 @@ struct CacheOptions {
 
 /// A voxelization and how it was obtained.
 struct CachedVoxelization {
-  VoxelizedObject voxelized;  ///< the voxmap (object-local frame) and its counts
-  bool cacheHit = false;      ///< read from the cache rather than built
-  double voxelizeS = 0.0;  ///< seconds spent building (features + voxelize); 0 on a hit
-  double loadS = 0.0;      ///< seconds spent reading the cache file; 0 on a miss
-  double saveS = 0.0;      ///< seconds spent writing the cache file; 0 on a hit or when disabled
-  std::filesystem::path cacheFile;  ///< the file read or written; empty when the cache is disabled
+  VoxelizedObject voxelized;          ///< the voxmap (object-local frame) and its counts
+  bool cacheHit = false;              ///< read from the cache rather than built
+  double voxelizeS = 0.0;             ///< seconds spent building (features + voxelize); 0 on a hit
+  double loadS = 0.0;                 ///< seconds spent reading the cache file; 0 on a miss
+  double saveS = 0.0;                 ///< seconds spent writing the cache file; 0 on a hit or when disabled
+  std::filesystem::path cacheFile;    ///< the file read or written; empty when the cache is disabled
   std::vector<std::string> warnings;  ///< one line each, e.g. a corrupt cache file that was rebuilt
 };
 
 /// A pointshell and how it was obtained.
 struct CachedPointshell {
-  Pointshell pointshell;  ///< object-local frame
-  bool cacheHit = false;  ///< read from the cache rather than built
-  double buildS = 0.0;  ///< seconds spent building (features + pointshell); 0 on a hit
-  double loadS = 0.0;   ///< seconds spent reading the cache file; 0 on a miss
-  double saveS = 0.0;   ///< seconds spent writing the cache file; 0 on a hit or when disabled
-  std::filesystem::path cacheFile;  ///< the file read or written; empty when the cache is disabled
+  Pointshell pointshell;              ///< object-local frame
+  bool cacheHit = false;              ///< read from the cache rather than built
+  double buildS = 0.0;                ///< seconds spent building (features + pointshell); 0 on a hit
+  double loadS = 0.0;                 ///< seconds spent reading the cache file; 0 on a miss
+  double saveS = 0.0;                 ///< seconds spent writing the cache file; 0 on a hit or when disabled
+  std::filesystem::path cacheFile;    ///< the file read or written; empty when the cache is disabled
   std::vector<std::string> warnings;  ///< one line each, e.g. a corrupt cache file that was rebuilt
 };
 
@@ -75,14 +75,15 @@ struct BudgetedVoxmap {
 /// cache file (built and saved first if the cache lacks it; its checksum is checked
 /// once). Throws voxhap::Error when the cache is off or cannot be written, or when the
 /// budget cannot hold the voxmap's tables and one chunk.
-BudgetedVoxmap voxelizeWithinBudget(std::span<const SceneObject* const> objects, const VoxelizeOptions& options,
-                                    const CacheOptions& cache, std::uint64_t budgetBytes,
-                                    const ProgressFn& progress = {});
+BudgetedVoxmap voxelizeWithinBudget(std::span<const SceneObject* const> objects,
+                                    const VoxelizeOptions& options, const CacheOptions& cache,
+                                    std::uint64_t budgetBytes, const ProgressFn& progress = {});
 
 /// Builds the pointshell of the parts of `objects` (features at the point spacing, then
 /// buildPointshell()), or loads it from the cache. Throws voxhap::Error as
 /// buildPointshell() does.
-CachedPointshell pointshellCached(std::span<const SceneObject* const> objects, const PointshellOptions& options,
-                                  const CacheOptions& cache, const ProgressFn& progress = {});
+CachedPointshell pointshellCached(std::span<const SceneObject* const> objects,
+                                  const PointshellOptions& options, const CacheOptions& cache,
+                                  const ProgressFn& progress = {});
 
 }  // namespace voxhap

@@ -1,7 +1,5 @@
 #include "haptics/voxel/voxelizer.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -11,6 +9,7 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <unistd.h>
 
 #include "haptics/core/error.h"
 #include "haptics/core/parallel.h"
@@ -28,11 +27,14 @@ constexpr int kLargestRange = 16;  // voxels; the halo of a hyperchunk's distanc
 /// Index of (x, y, z) in a box of nx × ny × … elements, x fastest; all arguments ≥ 0.
 std::size_t at3(int x, int y, int z, int nx, int ny) {
   return static_cast<std::size_t>(x) +
-         static_cast<std::size_t>(nx) * (static_cast<std::size_t>(y) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(z));
+         static_cast<std::size_t>(nx) *
+             (static_cast<std::size_t>(y) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(z));
 }
 
 /// Number of elements of a box nx × ny × nz.
-std::size_t volume3(int nx, int ny, int nz) { return at3(0, 0, nz, nx, ny); }
+std::size_t volume3(int nx, int ny, int nz) {
+  return at3(0, 0, nz, nx, ny);
+}
 
 std::string gib(std::uint64_t bytes) {
   std::ostringstream s;
@@ -52,16 +54,16 @@ std::uint64_t physicalMemoryBytes() {
 struct HyperResult {
   bool uniform = true;
   VoxelWord uniformWord = 0;
-  std::vector<std::uint32_t> chunkEntries;  // kUniform | word, or index into blocks
-  std::vector<std::uint8_t> blocks;         // packed words of the mixed chunks
+  std::vector<std::uint32_t> chunkEntries;                    // kUniform | word, or index into blocks
+  std::vector<std::uint8_t> blocks;                           // packed words of the mixed chunks
   std::array<std::uint64_t, kChunksPerHyper / 64> bearing{};  // bit per chunk: a surface field not far
-  VoxelizeStats stats;                      // voxel counts and votes only
+  VoxelizeStats stats;                                        // voxel counts and votes only
 };
 
 class Voxelizer {
 public:
-  Voxelizer(const VoxelGrid& grid, const VoxelizeOptions& options, const HyperchunkBlocks<std::uint8_t>& features,
-            const InteriorClassifier& interior)
+  Voxelizer(const VoxelGrid& grid, const VoxelizeOptions& options,
+            const HyperchunkBlocks<std::uint8_t>& features, const InteriorClassifier& interior)
       : grid_(grid), options_(options), features_(features), interior_(interior) {}
 
   bool nearFeatures(const glm::ivec3& ijkHyper) const {
@@ -92,7 +94,8 @@ public:
       interior_.votes(core + kHyperEdgeVoxels / 2, glm::ivec3(1), votes);
       const bool inside = votes[0] >= 2;
       result.uniformWord = inside ? enc.pack(kValueInterior, kValueInterior, kValueInterior) : 0;
-      if (inside) result.stats.interiorVoxels = std::uint64_t{kHyperEdgeVoxels} * kHyperEdgeVoxels * kHyperEdgeVoxels;
+      if (inside)
+        result.stats.interiorVoxels = std::uint64_t{kHyperEdgeVoxels} * kHyperEdgeVoxels * kHyperEdgeVoxels;
       return result;
     }
 
@@ -118,7 +121,8 @@ public:
     for (int z = 0; z < c; ++z) {
       for (int y = 0; y < c; ++y) {
         const std::size_t i0 = at3(0, y, z, c, c);
-        for (int f = 0; f < kFieldCount; ++f) distanceOf[f] = hasDistance[f] ? &scratch.distance[f][i0] : farRow.data();
+        for (int f = 0; f < kFieldCount; ++f)
+          distanceOf[f] = hasDistance[f] ? &scratch.distance[f][i0] : farRow.data();
         composeRow(&bits[at3(r, y + r, z + r, n, n)], &votes[i0], distanceOf, keep, &words[i0], result.stats);
         if (result.stats.voteDisagreements > 0 && !result.stats.firstDisagreementLocal) {
           for (int x = 0; x < c; ++x) {
@@ -139,8 +143,9 @@ private:
   /// The words of one row of 64 voxels from their feature bits, inside votes (0 … 3) and
   /// capped distances per field; adds the row's voxels to `stats`. Written as one
   /// branch-free pass so that the compiler vectorizes it (out of line: inlined, it does not).
-  [[gnu::noinline]] void composeRow(const std::uint8_t* bits, const std::uint8_t* votes, const std::uint8_t* const* distance,
-                  const std::uint8_t* keep, VoxelWord* words, VoxelizeStats& stats) const {
+  [[gnu::noinline]] void composeRow(const std::uint8_t* bits, const std::uint8_t* votes,
+                                    const std::uint8_t* const* distance, const std::uint8_t* keep,
+                                    VoxelWord* words, VoxelizeStats& stats) const {
     const VoxelEncoding& enc = options_.encoding;
     const int shift = enc.bitsPerField;
     const auto range = static_cast<std::uint8_t>(enc.rangeVoxels);
@@ -164,7 +169,7 @@ private:
       const auto isSurface = static_cast<std::uint8_t>(b & kSurfaceBit);
       const auto isEdge = static_cast<std::uint8_t>(b & kEdgeBit);
       const auto isVertex = static_cast<std::uint8_t>(b & kVertexBit);
-      const auto notSurface = static_cast<std::uint8_t>(isSurface - 1);  // 0xFF or 0
+      const auto notSurface = static_cast<std::uint8_t>(isSurface - 1);      // 0xFF or 0
       const auto inside = static_cast<std::uint8_t>(vote & 2 & notSurface);  // two votes or three
       const std::uint8_t v0 = value(isSurface, inside, d0[x], keep0);
       const std::uint8_t v1 = value(isEdge, inside, d1[x], keep1);
@@ -323,7 +328,8 @@ VoxelGrid gridAround(const Bounds& boundsLocal, double voxelSizeM, int paddingVo
   return grid;
 }
 
-std::uint64_t estimateVoxelizeBytes(double surfaceAreaM2, std::uint64_t triangles, const VoxelizeOptions& options) {
+std::uint64_t estimateVoxelizeBytes(double surfaceAreaM2, std::uint64_t triangles,
+                                    const VoxelizeOptions& options) {
   const double s = options.voxelSizeM;
   const double chunkM = s * kChunkEdgeVoxels;
   // chunks the surface passes through (a tilted surface meets up to ~√3 times more)
@@ -343,7 +349,8 @@ void checkVoxelizeOptions(const VoxelizeOptions& options) {
   }
   if (!options.encoding.valid() || options.encoding.rangeVoxels > kLargestRange) {
     throw Error("distance fields of " + std::to_string(options.encoding.bitsPerField) + " bits with range " +
-                std::to_string(options.encoding.rangeVoxels) + " are not supported (2, 4 or 8 bits, range 1 … 16)");
+                std::to_string(options.encoding.rangeVoxels) +
+                " are not supported (2, 4 or 8 bits, range 1 … 16)");
   }
 }
 
@@ -363,13 +370,15 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
   const double longestVoxels = std::max({extent.x, extent.y, extent.z}) / options.voxelSizeM;
   if (longestVoxels > double(1 << 24)) {
     throw Error("voxel size " + std::to_string(options.voxelSizeM * 1e3) + " mm makes " +
-                std::to_string(static_cast<long long>(longestVoxels)) + " voxels along one axis (at most 16777216)");
+                std::to_string(static_cast<long long>(longestVoxels)) +
+                " voxels along one axis (at most 16777216)");
   }
-  const std::uint64_t budget = options.memoryBudgetBytes ? options.memoryBudgetBytes : physicalMemoryBytes() / 4 * 3;
+  const std::uint64_t budget =
+      options.memoryBudgetBytes ? options.memoryBudgetBytes : physicalMemoryBytes() / 4 * 3;
   const std::uint64_t estimate = estimateVoxelizeBytes(surfaceArea(meshes), triangles, options);
   if (estimate > budget) {
-    throw Error("voxel size " + std::to_string(options.voxelSizeM * 1e3) + " mm would need about " + gib(estimate) +
-                " to voxelize (budget " + gib(budget) + "); choose a larger voxel size");
+    throw Error("voxel size " + std::to_string(options.voxelSizeM * 1e3) + " mm would need about " +
+                gib(estimate) + " to voxelize (budget " + gib(budget) + "); choose a larger voxel size");
   }
 
   auto stage = [&](double begin, double end) -> ProgressFn {
@@ -380,9 +389,11 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
 
   std::vector<FeatureGeometry> geometry;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
-    geometry.push_back({meshes[i], options.buildFeatureFields && i < features.size() ? &features[i] : nullptr});
+    geometry.push_back(
+        {meshes[i], options.buildFeatureFields && i < features.size() ? &features[i] : nullptr});
   }
-  const HyperchunkBlocks<std::uint8_t> featureBits = rasterizeFeatures(grid, geometry, options.threads, stage(0.0, 0.3));
+  const HyperchunkBlocks<std::uint8_t> featureBits =
+      rasterizeFeatures(grid, geometry, options.threads, stage(0.0, 0.3));
   const EmbreeScene scene(meshes);
   const InteriorClassifier interior(grid, meshes, scene, options.threads);
   if (progress) progress(0.5);
@@ -444,7 +455,8 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
     }
     hyper[h] = static_cast<std::uint32_t>(chunks.size() / kChunksPerHyper);
     const auto firstBlock = static_cast<std::uint32_t>(voxelBytes.size() / blockBytes);
-    for (std::uint32_t entry : r.chunkEntries) chunks.push_back((entry & Voxmap::kUniform) ? entry : entry + firstBlock);
+    for (std::uint32_t entry : r.chunkEntries)
+      chunks.push_back((entry & Voxmap::kUniform) ? entry : entry + firstBlock);
     voxelBytes.insert(voxelBytes.end(), r.blocks.begin(), r.blocks.end());
     r = HyperResult{};
   }

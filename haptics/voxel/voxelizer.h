@@ -22,10 +22,10 @@
 namespace voxhap {
 
 struct VoxelizeOptions {
-  double voxelSizeM = 0.0;                                ///< > 0
+  double voxelSizeM = 0.0;  ///< > 0
   VoxelEncoding encoding = VoxelEncoding::forBits(4);
-  bool buildFeatureFields = true;  ///< edge and vertex fields (geometrical awareness); else left far
-  int threads = 0;                 ///< 0: all cores
+  bool buildFeatureFields = true;       ///< edge and vertex fields (geometrical awareness); else left far
+  int threads = 0;                      ///< 0: all cores
   std::uint64_t memoryBudgetBytes = 0;  ///< refuse before allocating beyond this; 0: 3/4 of RAM
 };
 
@@ -43,7 +43,7 @@ struct VoxelizeStats {
   std::uint64_t surfacePoints = 0;  ///< the other surface voxels
   std::uint64_t triangles = 0;
   std::uint64_t polygonsAfterMerge = 0;
-  std::uint64_t voteDisagreements = 0;          ///< free voxels whose three votes differ
+  std::uint64_t voteDisagreements = 0;               ///< free voxels whose three votes differ
   std::optional<glm::dvec3> firstDisagreementLocal;  ///< centre of one such voxel, m
   std::uint64_t totalVoxels() const { return interiorVoxels + surfaceVoxels + distanceVoxels; }
 };
@@ -54,7 +54,8 @@ struct VoxelizedObject {
 };
 
 /// Rough peak memory of voxelizing meshes of this total surface area, bytes.
-std::uint64_t estimateVoxelizeBytes(double surfaceAreaM2, std::uint64_t triangles, const VoxelizeOptions& options);
+std::uint64_t estimateVoxelizeBytes(double surfaceAreaM2, std::uint64_t triangles,
+                                    const VoxelizeOptions& options);
 
 /// Throws voxhap::Error when `options` are invalid (voxel size not a positive number,
 /// unsupported bit width or range).

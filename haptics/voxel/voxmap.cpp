@@ -52,7 +52,8 @@ std::string Voxmap::validate(const VoxelGrid& grid, const VoxelEncoding& encodin
                              std::span<const std::uint32_t> hyper, std::span<const std::uint32_t> chunks,
                              std::size_t voxelBytesSize, std::size_t chunkDistancesSize) {
   if (!encoding.valid()) return "invalid encoding (" + std::to_string(encoding.bitsPerField) + " bits)";
-  if (!(grid.voxelSizeM > 0.0) || !std::isfinite(grid.voxelSizeM)) return "voxel size is not a positive number";
+  if (!(grid.voxelSizeM > 0.0) || !std::isfinite(grid.voxelSizeM))
+    return "voxel size is not a positive number";
   for (int k = 0; k < 3; ++k) {
     if (grid.dimsHyper[k] <= 0 || grid.dimsHyper[k] > kMaxDimsHyper) return "grid size out of range";
     if (!std::isfinite(grid.originLocal[k])) return "grid origin is not finite";
@@ -63,14 +64,17 @@ std::string Voxmap::validate(const VoxelGrid& grid, const VoxelEncoding& encodin
   if (hyper.size() * kChunksPerHyper != chunkCount) return "hyperchunk table does not match the grid";
   if (chunkDistancesSize != chunkCount) return "chunk-level field does not match the grid";
   if (chunks.size() % kChunksPerHyper != 0) return "chunk table is not whole hyperchunks";
-  const std::size_t blockBytes = std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
+  const std::size_t blockBytes =
+      std::size_t{kVoxelsPerChunk} * static_cast<std::size_t>(encoding.bytesPerWord());
   if (voxelBytesSize % blockBytes != 0) return "voxel words are not whole chunks";
   const std::uint32_t uniformLimit = 1u << (kFieldCount * encoding.bitsPerField);
   for (std::uint32_t entry : hyper) {
-    if (!entryValid(entry, chunks.size() / kChunksPerHyper, uniformLimit, false)) return "hyperchunk entry out of range";
+    if (!entryValid(entry, chunks.size() / kChunksPerHyper, uniformLimit, false))
+      return "hyperchunk entry out of range";
   }
   for (std::uint32_t entry : chunks) {
-    if (!entryValid(entry, voxelBytesSize / blockBytes, uniformLimit, true)) return "chunk entry out of range";
+    if (!entryValid(entry, voxelBytesSize / blockBytes, uniformLimit, true))
+      return "chunk entry out of range";
   }
   return {};
 }

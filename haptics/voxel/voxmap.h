@@ -80,8 +80,8 @@ public:
     const std::uint32_t hyperEntry =
         hyper_[static_cast<std::size_t>(h.x + grid_.dimsHyper.x * (h.y + grid_.dimsHyper.y * h.z))];
     if (hyperEntry & kUniform) return hyperEntry & ~kUniform;
-    const std::uint32_t chunkEntry = chunkEntry_(std::size_t{hyperEntry} * kChunksPerHyper +
-                                                 chunkInHyper(ijkVoxel >> kChunkEdgeLog2));
+    const std::uint32_t chunkEntry =
+        chunkEntry_(std::size_t{hyperEntry} * kChunksPerHyper + chunkInHyper(ijkVoxel >> kChunkEdgeLog2));
     if (chunkEntry & kUniform) return chunkEntry & ~kUniform;
     if (!slotLastUse_.empty()) markUse_(chunkEntry);
     const std::size_t at =
@@ -107,9 +107,9 @@ public:
     const int outside = std::max({below.x, below.y, below.z, above.x, above.y, above.z});
     if (outside > 0 || chunkDistances_.empty()) return static_cast<std::uint8_t>(std::clamp(outside, 1, 255));
     return chunkDistances_[static_cast<std::size_t>(ijkChunk.x) +
-                           static_cast<std::size_t>(d.x) * (static_cast<std::size_t>(ijkChunk.y) +
-                                                            static_cast<std::size_t>(d.y) *
-                                                                static_cast<std::size_t>(ijkChunk.z))];
+                           static_cast<std::size_t>(d.x) *
+                               (static_cast<std::size_t>(ijkChunk.y) +
+                                static_cast<std::size_t>(d.y) * static_cast<std::size_t>(ijkChunk.z))];
   }
 
   /// The flat tree's arrays and the chunk-level field, for serialization; see above.
@@ -142,13 +142,13 @@ public:
   struct PagedArrays {
     VoxelGrid grid;                        ///< the voxmap's grid
     const std::uint32_t* hyper = nullptr;  ///< hyperchunk entries (never paged)
-    std::uint32_t* chunks = nullptr;  ///< entries: published with release, unpublished with seq_cst
-    std::uint8_t* pool = nullptr;     ///< the slots, slot s at pool + s · slotStrideBytes
-    std::size_t blockBytes = 0;       ///< bytes of a chunk's words
-    std::size_t slotStrideBytes = 0;  ///< bytes from one slot to the next (padded)
+    std::uint32_t* chunks = nullptr;       ///< entries: published with release, unpublished with seq_cst
+    std::uint8_t* pool = nullptr;          ///< the slots, slot s at pool + s · slotStrideBytes
+    std::size_t blockBytes = 0;            ///< bytes of a chunk's words
+    std::size_t slotStrideBytes = 0;       ///< bytes from one slot to the next (padded)
     std::uint32_t* slotLastUse = nullptr;  ///< per slot, the use clock when a lookup last read it
     std::size_t slotCount = 0;
-    std::uint32_t* useClock = nullptr;     ///< the use clock, in ticks (voxel_pager.h)
+    std::uint32_t* useClock = nullptr;  ///< the use clock, in ticks (voxel_pager.h)
 
     /// The index in `chunks` of chunk `ijkChunk` (inside the grid), or −1 when its
     /// hyperchunk is uniform.

@@ -138,7 +138,8 @@ TEST_F(BenchCommand, RotationTurnsTheBallAtItsLimitWhenCapacityIsAmple) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto rows = nlohmann::json::parse(r.out).at("rows");
   ASSERT_EQ(rows.size(), 1u);
-  for (const char* key : {"voxel_size_m", "points", "rotation_s", "limit_s", "mean_contacts", "missed_deadlines"}) {
+  for (const char* key :
+       {"voxel_size_m", "points", "rotation_s", "limit_s", "mean_contacts", "missed_deadlines"}) {
     EXPECT_TRUE(rows[0].contains(key)) << key;
   }
   EXPECT_EQ(rows[0].at("missed_deadlines"), 0);
@@ -161,16 +162,31 @@ TEST_F(BenchCommand, RotationWithTooSmallACapacityMissesEveryDeadlineButStillTur
   EXPECT_NEAR(row.at("frames").get<double>(), limitFrames, 0.05 * limitFrames + 1);
 }
 
-constexpr const char* kScalingKeys[] = {
-    "points",           "voxel_size_m",       "static_voxel_size_m", "frames",          "compute_p50_us",
-    "compute_p99_us",   "compute_p999_us",    "compute_max_us",      "missed_deadlines", "frames_over_budget",
-    "mean_tested",      "mean_contacts",      "max_contacts",        "mean_travel_scale", "mean_max_travel_m",
-    "brute_frames",     "brute_p50_us",       "speedup",             "build_s"};
+constexpr const char* kScalingKeys[] = {"points",
+                                        "voxel_size_m",
+                                        "static_voxel_size_m",
+                                        "frames",
+                                        "compute_p50_us",
+                                        "compute_p99_us",
+                                        "compute_p999_us",
+                                        "compute_max_us",
+                                        "missed_deadlines",
+                                        "frames_over_budget",
+                                        "mean_tested",
+                                        "mean_contacts",
+                                        "max_contacts",
+                                        "mean_travel_scale",
+                                        "mean_max_travel_m",
+                                        "brute_frames",
+                                        "brute_p50_us",
+                                        "speedup",
+                                        "build_s"};
 
 // --quick: 10^4 and 10^5 points, 1 s of frames each; a fixed capacity keeps it
 // deterministic in what it tests (not in its timings)
 TEST_F(BenchCommand, ScalingQuickMeasuresTwoShellSizesCoherentAndBruteForce) {
-  const CliRun r = voxhap({"bench", "scaling", "--quick", "--capacity", "1000000", "--json", "--svg", "s.svg"});
+  const CliRun r =
+      voxhap({"bench", "scaling", "--quick", "--capacity", "1000000", "--json", "--svg", "s.svg"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
   EXPECT_EQ(j.at("benchmark"), "scaling");
@@ -199,10 +215,9 @@ TEST_F(BenchCommand, ScalingQuickMeasuresTwoShellSizesCoherentAndBruteForce) {
   EXPECT_NE(slurp(dir_ / "s.svg").find("<svg"), std::string::npos);
 }
 
-constexpr const char* kErrorKeys[] = {"scene",          "voxel_size_m",    "bits",      "awareness",
-                                      "coherence",      "points",          "compute_p50_us", "gap_m",
-                                      "force_angle_deg", "abs_gap_m",      "gap_over_voxel", "contacts",
-                                      "speed_mps",      "missed_deadlines"};
+constexpr const char* kErrorKeys[] = {
+    "scene", "voxel_size_m",    "bits",      "awareness",      "coherence", "points",    "compute_p50_us",
+    "gap_m", "force_angle_deg", "abs_gap_m", "gap_over_voxel", "contacts",  "speed_mps", "missed_deadlines"};
 
 TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
   const CliRun r = voxhap({"bench", "error", "--quick", "--json", "--csv", "e.csv", "--svg", "e.svg"});
@@ -236,8 +251,9 @@ TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
 }
 
 TEST_F(BenchCommand, ErrorRefusesAnUnknownSceneOrBitWidthBeforeMeasuring) {
-  for (const std::vector<std::string>& args : {std::vector<std::string>{"bench", "error", "--scene", "teapot"},
-                                               std::vector<std::string>{"bench", "error", "--bits", "3"}}) {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"bench", "error", "--scene", "teapot"},
+        std::vector<std::string>{"bench", "error", "--bits", "3"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
@@ -248,21 +264,31 @@ TEST_F(BenchCommand, ErrorRefusesAnUnknownSceneOrBitWidthBeforeMeasuring) {
 
 namespace {
 
-constexpr const char* kExtractionKeys[] = {
-    "voxel_size_m",       "point_spacing_m",  "points",         "frames",         "completion_s",
-    "wall_s",             "frames_over_budget", "missed_deadlines", "compute_p50_us", "compute_p99_us",
-    "compute_max_us",     "max_contacts",     "max_penetration_m", "exact_wall_s", "mean_travel_scale",
-    "actuator_progress_m", "path_length_m"};
+constexpr const char* kExtractionKeys[] = {"voxel_size_m",
+                                           "point_spacing_m",
+                                           "points",
+                                           "frames",
+                                           "completion_s",
+                                           "wall_s",
+                                           "frames_over_budget",
+                                           "missed_deadlines",
+                                           "compute_p50_us",
+                                           "compute_p99_us",
+                                           "compute_max_us",
+                                           "max_contacts",
+                                           "max_penetration_m",
+                                           "exact_wall_s",
+                                           "mean_travel_scale",
+                                           "actuator_progress_m",
+                                           "path_length_m"};
 
 // The landing gear takes minutes to generate and voxelize in a fresh cache: the quick row
 // runs on the committed peg-in-hole scene instead (the peg lifted out of its hole), which
 // exercises the same benchmark code and output.
 TEST_F(BenchCommand, ExtractionQuickPrintsOneRowWithEveryKey) {
-  {
-    std::ofstream(dir_ / "lift.txt") << "0 1 0 0 0 0 0 0\n0.15 1 0 0 0 0 0 0.04\n0.25 1 0 0 0 0 0 0.04\n";
-  }
-  const CliRun run = voxhap({"bench", "extraction", "--quick", "--scene", asset("peg-in-hole.glb"), "--move", "peg",
-                             "--script", (dir_ / "lift.txt").string(), "--json"});
+  { std::ofstream(dir_ / "lift.txt") << "0 1 0 0 0 0 0 0\n0.15 1 0 0 0 0 0 0.04\n0.25 1 0 0 0 0 0 0.04\n"; }
+  const CliRun run = voxhap({"bench", "extraction", "--quick", "--scene", asset("peg-in-hole.glb"), "--move",
+                             "peg", "--script", (dir_ / "lift.txt").string(), "--json"});
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::ordered_json j = nlohmann::ordered_json::parse(run.out);
   EXPECT_EQ(j.at("benchmark"), "extraction");

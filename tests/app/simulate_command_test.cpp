@@ -9,8 +9,8 @@
 #include "haptics/geometry/mesh_builder.h"
 #include "haptics/scene/gltf_writer.h"
 #include "support/cli_runner.h"
-#include "support/gltf_fixtures.h"
 #include "support/contact_scenes.h"
+#include "support/gltf_fixtures.h"
 
 namespace voxhap::test {
 namespace {

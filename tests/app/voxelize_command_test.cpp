@@ -1,8 +1,6 @@
 // `voxhap voxelize`, run as the real executable: exit codes, the JSON figures, the
 // cache across runs and the slice picture.
 
-#include <png.h>
-
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -10,6 +8,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <png.h>
 
 #include "support/cli_runner.h"
 
@@ -73,9 +72,9 @@ TEST_F(VoxelizeCommand, IsListedByTheTopLevelHelp) {
 
 TEST_F(VoxelizeCommand, BallReportsTheTableFiguresAsOneJsonDocument) {
   const nlohmann::json j = voxelizeJson({"--object", "ball", "--voxel-size", "0.35mm"});
-  for (const char* key : {"object", "voxel_size_m", "bits", "triangles", "polygons_after_merge", "points",
-                          "points_by_feature", "voxels", "voxelize_s", "load_s", "memory_bytes", "cache",
-                          "peak_rss_bytes"}) {
+  for (const char* key :
+       {"object", "voxel_size_m", "bits", "triangles", "polygons_after_merge", "points", "points_by_feature",
+        "voxels", "voxelize_s", "load_s", "memory_bytes", "cache", "peak_rss_bytes"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["object"], "ball");
@@ -134,7 +133,8 @@ TEST_F(VoxelizeCommand, NoCacheAlwaysVoxelizesAndCacheDirChoosesTheFolder) {
 TEST_F(VoxelizeCommand, WithoutObjectTheStaticObjectsAreVoxelizedAsOne) {
   const nlohmann::json j = voxelizeJson({"--voxel-size", "1mm"});
   EXPECT_EQ(j["object"], "static");
-  const nlohmann::json info = nlohmann::json::parse(voxhap({"scene", "info", asset("ball-and-socket.glb"), "--json"}).out);
+  const nlohmann::json info =
+      nlohmann::json::parse(voxhap({"scene", "info", asset("ball-and-socket.glb"), "--json"}).out);
   EXPECT_EQ(j["triangles"], info["static_triangles"]);
 }
 
@@ -149,13 +149,15 @@ TEST_F(VoxelizeCommand, BadVoxelSizesExitTwoWithOneLineNamingTheOption) {
   const CliRun missing = voxhap({"voxelize", asset("ball-and-socket.glb")});
   EXPECT_EQ(missing.exitCode, 2);
   EXPECT_NE(missing.err.find("--voxel-size"), std::string::npos) << missing.err;
-  const CliRun bits = voxhap({"voxelize", asset("ball-and-socket.glb"), "--voxel-size", "1mm", "--bits", "3"});
+  const CliRun bits =
+      voxhap({"voxelize", asset("ball-and-socket.glb"), "--voxel-size", "1mm", "--bits", "3"});
   EXPECT_EQ(bits.exitCode, 2);
   EXPECT_NE(bits.err.find("--bits"), std::string::npos) << bits.err;
 }
 
 TEST_F(VoxelizeCommand, UnknownObjectIsNamedWithTheKnownOnes) {
-  const CliRun r = voxhap({"voxelize", asset("ball-and-socket.glb"), "--object", "cube", "--voxel-size", "1mm"});
+  const CliRun r =
+      voxhap({"voxelize", asset("ball-and-socket.glb"), "--object", "cube", "--voxel-size", "1mm"});
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_EQ(lineCount(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("'cube'"), std::string::npos) << r.err;
@@ -184,7 +186,8 @@ TEST_F(VoxelizeCommand, SliceIsAPngOfThreePanelsOfTheGridsLayer) {
   EXPECT_EQ(j["slice"]["height_px"], height);
   // the grid starts 9 voxels below the voxel of the ball's lowest point; z = 12 mm lies in
   // voxel floor(12 / 0.35) = 34 of the frame's lattice
-  const nlohmann::json info = nlohmann::json::parse(voxhap({"scene", "info", asset("ball-and-socket.glb"), "--json"}).out);
+  const nlohmann::json info =
+      nlohmann::json::parse(voxhap({"scene", "info", asset("ball-and-socket.glb"), "--json"}).out);
   ASSERT_EQ(info["objects"][0]["name"], "ball");
   const double lowestM = info["objects"][0]["bounds_m"]["min"][2].get<double>();
   const int gridStart = static_cast<int>(std::floor(lowestM / kVoxelM)) - 9;
@@ -207,8 +210,8 @@ TEST_F(VoxelizeCommand, SliceIsAPngOfThreePanelsOfTheGridsLayer) {
 }
 
 TEST_F(VoxelizeCommand, UnwritablePngExitsOneNamingTheFile) {
-  const CliRun r = voxhap({"voxelize", asset("ball-and-socket.glb"), "--object", "ball", "--voxel-size", "1mm",
-                           "--slice", "z=0", "--png", "no-such-folder/ball.png"});
+  const CliRun r = voxhap({"voxelize", asset("ball-and-socket.glb"), "--object", "ball", "--voxel-size",
+                           "1mm", "--slice", "z=0", "--png", "no-such-folder/ball.png"});
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_EQ(lineCount(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("no-such-folder/ball.png"), std::string::npos) << r.err;
@@ -216,11 +219,12 @@ TEST_F(VoxelizeCommand, UnwritablePngExitsOneNamingTheFile) {
 }
 
 TEST_F(VoxelizeCommand, SliceMistakesExitTwo) {
-  for (const auto& extra : std::vector<std::vector<std::string>>{
-           {"--slice", "z=0"}, {"--png", "a.png"}, {"--slice", "w=0", "--png", "a.png"},
-           {"--slice", "z=1", "--png", "a.png"}}) {
-    std::vector<std::string> args = {"voxelize", asset("ball-and-socket.glb"), "--object", "ball", "--voxel-size",
-                                     "1mm"};
+  for (const auto& extra : std::vector<std::vector<std::string>>{{"--slice", "z=0"},
+                                                                 {"--png", "a.png"},
+                                                                 {"--slice", "w=0", "--png", "a.png"},
+                                                                 {"--slice", "z=1", "--png", "a.png"}}) {
+    std::vector<std::string> args = {
+        "voxelize", asset("ball-and-socket.glb"), "--object", "ball", "--voxel-size", "1mm"};
     args.insert(args.end(), extra.begin(), extra.end());
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 2) << extra[0] << " " << r.err;

@@ -30,10 +30,15 @@ TEST_F(VoxhapCli, HelpListsOnlyWorkingCommandsAndExitsZero) {
 }
 
 TEST_F(VoxhapCli, EveryCommandHasHelp) {
-  for (const auto& args : std::vector<std::vector<std::string>>{
-           {"scene", "--help"}, {"scene", "info", "--help"}, {"scene", "generate", "--help"}, {"demo", "--help"},
-           {"voxelize", "--help"}, {"simulate", "--help"},
-           {"bench", "--help"}, {"bench", "table1", "--help"}, {"bench", "extraction", "--help"}}) {
+  for (const auto& args : std::vector<std::vector<std::string>>{{"scene", "--help"},
+                                                                {"scene", "info", "--help"},
+                                                                {"scene", "generate", "--help"},
+                                                                {"demo", "--help"},
+                                                                {"voxelize", "--help"},
+                                                                {"simulate", "--help"},
+                                                                {"bench", "--help"},
+                                                                {"bench", "table1", "--help"},
+                                                                {"bench", "extraction", "--help"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 0) << args[0];
     EXPECT_NE(r.out.find("Usage: voxhap"), std::string::npos) << r.out;
@@ -42,9 +47,13 @@ TEST_F(VoxhapCli, EveryCommandHasHelp) {
 }
 
 TEST_F(VoxhapCli, UsageMistakesExitTwoWithOneLine) {
-  for (const auto& args : std::vector<std::vector<std::string>>{
-           {}, {"fly"}, {"scene", "info"}, {"scene", "info", "a", "b"}, {"scene", "info", "--bogus", "x"},
-           {"scene", "generate", "landing-gear", "--seed", "-3"}}) {
+  for (const auto& args :
+       std::vector<std::vector<std::string>>{{},
+                                             {"fly"},
+                                             {"scene", "info"},
+                                             {"scene", "info", "a", "b"},
+                                             {"scene", "info", "--bogus", "x"},
+                                             {"scene", "generate", "landing-gear", "--seed", "-3"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 2) << (args.empty() ? "" : args[0]);
     if (!args.empty()) {
@@ -92,7 +101,8 @@ TEST_F(VoxhapCli, SceneInfoJsonIsOneDocumentWithTheFigures) {
 
 TEST_F(VoxhapCli, SceneInfoListsTheGroupsThatCanBeMoved) {
   using voxhap::test::BufferStorage;
-  const fs::path file = voxhap::test::writeDoc(voxhap::test::pistonAssemblyDoc(), dir_, "piston", BufferStorage::Glb);
+  const fs::path file =
+      voxhap::test::writeDoc(voxhap::test::pistonAssemblyDoc(), dir_, "piston", BufferStorage::Glb);
   const CliRun json = voxhap({"scene", "info", file.string(), "--json"});
   ASSERT_EQ(json.exitCode, 0) << json.err;
   const nlohmann::json j = nlohmann::json::parse(json.out);
@@ -113,7 +123,8 @@ TEST_F(VoxhapCli, SceneInfoListsTheGroupsThatCanBeMoved) {
   bool sawGroupRow = false;
   std::istringstream lines(text.out);
   for (std::string line; std::getline(lines, line);) {
-    sawGroupRow = sawGroupRow || (line.rfind("piston ", 0) == 0 && line.find("crown, pin") != std::string::npos);
+    sawGroupRow =
+        sawGroupRow || (line.rfind("piston ", 0) == 0 && line.find("crown, pin") != std::string::npos);
   }
   EXPECT_TRUE(sawGroupRow) << text.out;
 }
@@ -131,7 +142,8 @@ TEST_F(VoxhapCli, GeneratedSmallScenesEqualTheCommittedAssets) {
     const CliRun r = voxhap({"scene", "generate", name, "-o", "out.glb"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(slurp(dir_ / "out.glb"), slurp(asset(name + ".glb")))
-        << name << ": regenerate the asset with `voxhap scene generate " << name << " -o assets/" << name << ".glb`";
+        << name << ": regenerate the asset with `voxhap scene generate " << name << " -o assets/" << name
+        << ".glb`";
   }
 }
 
@@ -192,7 +204,8 @@ TEST_F(VoxhapCli, LandingGearIsGeneratedOnceThenCachedWithTheIssueFigures) {
   EXPECT_EQ(dynamicObjects, 1);
 
   size_t cachedFiles = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(dir_ / "cache")) cachedFiles += entry.is_regular_file();
+  for (const auto& entry : fs::recursive_directory_iterator(dir_ / "cache"))
+    cachedFiles += entry.is_regular_file();
   EXPECT_EQ(cachedFiles, 1u);
   const CliRun second = voxhap({"scene", "info", "landing-gear", "--json", "-v"});
   ASSERT_EQ(second.exitCode, 0) << second.err;

@@ -4,12 +4,11 @@
 // The socket's voxmap at 0.15 mm (tens of MB) does not fit the caches, so lookups are
 // cache-cold as in a real scene; points are visited in pointshell order (chunk by chunk),
 // as the haptic frame visits them. Counters: points tested per second, contacts per pass.
-#include <benchmark/benchmark.h>
-
 #include <cmath>
 #include <map>
 #include <memory>
 
+#include <benchmark/benchmark.h>
 #include <glm/gtc/quaternion.hpp>
 
 #include "haptics/collide/point_sampler.h"
@@ -56,7 +55,8 @@ void pointTests(benchmark::State& state) {
     angle += 0.37;
     const Pose pose{glm::dvec3(0.0), glm::angleAxis(angle, glm::normalize(glm::dvec3(1.0, 0.3, 0.2)))};
     const VoxelTransform transform = VoxelTransform::make(pose, b.socket.grid());
-    found += samplePoints(b.ball, b.socket, transform, shifts, kDefaultForceLayer, 0, points, contacts.data());
+    found +=
+        samplePoints(b.ball, b.socket, transform, shifts, kDefaultForceLayer, 0, points, contacts.data());
     benchmark::ClobberMemory();
   }
   state.counters["points"] = static_cast<double>(points);

@@ -1,12 +1,12 @@
 #include "support/cli_runner.h"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace voxhap::test {
 namespace {
@@ -35,7 +35,9 @@ std::string slurp(const fs::path& file) {
   return s.str();
 }
 
-int lineCount(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+int lineCount(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
 
 void CliTest::SetUp() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -45,11 +47,14 @@ void CliTest::SetUp() {
   fs::create_directories(dir_);
 }
 
-void CliTest::TearDown() { fs::remove_all(dir_); }
+void CliTest::TearDown() {
+  fs::remove_all(dir_);
+}
 
 CliRun CliTest::voxhap(const std::vector<std::string>& args) const {
-  std::string command = "cd " + shellQuote(dir_.string()) + " && VOXHAP_CACHE_DIR=" +
-                        shellQuote((dir_ / "cache").string()) + " " + shellQuote(VOXHAP_EXE);
+  std::string command = "cd " + shellQuote(dir_.string()) +
+                        " && VOXHAP_CACHE_DIR=" + shellQuote((dir_ / "cache").string()) + " " +
+                        shellQuote(VOXHAP_EXE);
   for (const std::string& a : args) {
     command.push_back(' ');
     command.append(shellQuote(a));

@@ -10,13 +10,15 @@
 
 #include "haptics/geometry/mesh_builder.h"
 #include "haptics/scene/scene.h"
-#include "haptics/sim/scene_model.h"
 #include "haptics/sim/local_simulation.h"
+#include "haptics/sim/scene_model.h"
 
 namespace voxhap::test {
 
 /// The translation to (x, y, z), m: where a test mesh is placed.
-inline glm::dmat4 at(double x, double y, double z) { return glm::translate(glm::dmat4(1.0), glm::dvec3(x, y, z)); }
+inline glm::dmat4 at(double x, double y, double z) {
+  return glm::translate(glm::dmat4(1.0), glm::dvec3(x, y, z));
+}
 
 /// An object of one part built by `append(mesh)`.
 template <typename Append>
@@ -33,7 +35,8 @@ SceneObject meshObject(const std::string& name, ObjectRole role, Append&& append
 /// A static plate whose top face is z = 0, 100 × 100 × 10 mm.
 inline SceneObject plate() {
   return meshObject("plate", ObjectRole::Static, [](TriangleMesh& m) {
-    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, -0.005)), glm::dvec3(0.05, 0.05, 0.005));
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, -0.005)),
+              glm::dvec3(0.05, 0.05, 0.005));
   });
 }
 

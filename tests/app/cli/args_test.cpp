@@ -63,7 +63,8 @@ TEST(Args, ParsesLengthsInMetresOrMillimetres) {
   EXPECT_DOUBLE_EQ(parseLengthM("0.00035", "voxel-size"), 0.00035);
   EXPECT_DOUBLE_EQ(parseLengthM("-12mm", "slice", LengthSign::Any), -0.012);
   EXPECT_DOUBLE_EQ(parseLengthM("0", "slice", LengthSign::Any), 0.0);
-  for (const char* bad : {"", "0", "-1mm", "nan", "inf", "1e999", "0.35 cm", "mm", "0.35mmm", "abc", "0.3.5"}) {
+  for (const char* bad :
+       {"", "0", "-1mm", "nan", "inf", "1e999", "0.35 cm", "mm", "0.35mmm", "abc", "0.3.5"}) {
     try {
       parseLengthM(bad, "voxel-size");
       ADD_FAILURE() << "accepted '" << bad << "'";

@@ -21,7 +21,8 @@ struct SphereOverPlate {
   SphereOverPlate() {
     scene.objects.push_back(test::plate());
     scene.objects.push_back(test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
-      appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0001, 0.0002, 0.01 + kGap)), 0.01, 4);
+      appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0001, 0.0002, 0.01 + kGap)), 0.01,
+                           4);
     }));
     VoxelizeOptions voxels;
     voxels.voxelSizeM = kVoxel;
@@ -60,7 +61,8 @@ TEST(Proximity, MinimumDistanceEstimateIsWithinAVoxelOfTheExactGap) {
   const SphereOverPlate s;
   EXPECT_NEAR(minimumDistanceM(s.sphere, Pose{}, s.plate), kGap, 1.5 * kVoxel);
   // far away: nothing known
-  EXPECT_TRUE(std::isinf(minimumDistanceM(s.sphere, Pose{glm::dvec3(0.0, 0.0, 0.05), identityQuat()}, s.plate)));
+  EXPECT_TRUE(
+      std::isinf(minimumDistanceM(s.sphere, Pose{glm::dvec3(0.0, 0.0, 0.05), identityQuat()}, s.plate)));
 }
 
 TEST(Proximity, ShadowHoldsThePlateVoxelsUnderTheSphere) {

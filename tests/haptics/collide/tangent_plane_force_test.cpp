@@ -47,8 +47,8 @@ struct MovingPair {
 
     // the voxmap object off the origin and turned; the shell tilted over its top face,
     // its lowest points a voxel into the force layer
-    voxmapMotion.poseWorld = Pose{glm::dvec3(0.03, -0.02, 0.01),
-                                  quatFromRotationVector(glm::dvec3(0.3, -0.2, 0.5))};
+    voxmapMotion.poseWorld =
+        Pose{glm::dvec3(0.03, -0.02, 0.01), quatFromRotationVector(glm::dvec3(0.3, -0.2, 0.5))};
     voxmapMotion.comLocal = glm::dvec3(0.0005, -0.0003, 0.0002);
     voxmapMotion.linearVelocityWorld = glm::dvec3(0.02, -0.01, 0.03);
     voxmapMotion.angularVelocityWorld = glm::dvec3(1.5, -2.0, 0.7);
@@ -78,7 +78,9 @@ struct MovingPair {
   }
 };
 
-glm::dvec3 comWorld(const BodyMotion& m) { return apply(m.poseWorld, m.comLocal); }
+glm::dvec3 comWorld(const BodyMotion& m) {
+  return apply(m.poseWorld, m.comLocal);
+}
 
 /// Velocity of the material point of `m` at `xWorld`.
 glm::dvec3 velocityAt(const BodyMotion& m, const glm::dvec3& xWorld) {
@@ -100,7 +102,8 @@ TEST(TangentPlaneForce, EachContactIsAnEqualAndOppositeForcePairAtItsPoint) {
     const glm::dvec3 shellTorque = glm::cross(x - comWorld(pair.shellMotion), w.forceOnShellWorld);
     const glm::dvec3 voxmapTorque = glm::cross(x - comWorld(pair.voxmapMotion), w.forceOnVoxmapWorld);
     EXPECT_NEAR(glm::length(w.torqueOnShellWorld - shellTorque), 0.0, 1e-6 * scaleNm) << "point " << c.point;
-    EXPECT_NEAR(glm::length(w.torqueOnVoxmapWorld - voxmapTorque), 0.0, 1e-6 * scaleNm) << "point " << c.point;
+    EXPECT_NEAR(glm::length(w.torqueOnVoxmapWorld - voxmapTorque), 0.0, 1e-6 * scaleNm)
+        << "point " << c.point;
   }
   EXPECT_GE(pushing, 4);
 }
@@ -110,9 +113,9 @@ TEST(TangentPlaneForce, PairWrenchConservesAngularMomentumAboutAFixedPoint) {
   const PairWrench w = pair.wrenchOf(pair.contacts);
   ASSERT_GT(w.pushingPoints, 0u);
   const glm::dvec3 fixedPoint(-0.3, 0.7, 0.2);
-  const glm::dvec3 total = w.torqueOnShellWorld + glm::cross(comWorld(pair.shellMotion) - fixedPoint, w.forceOnShellWorld) +
-                           w.torqueOnVoxmapWorld +
-                           glm::cross(comWorld(pair.voxmapMotion) - fixedPoint, w.forceOnVoxmapWorld);
+  const glm::dvec3 total =
+      w.torqueOnShellWorld + glm::cross(comWorld(pair.shellMotion) - fixedPoint, w.forceOnShellWorld) +
+      w.torqueOnVoxmapWorld + glm::cross(comWorld(pair.voxmapMotion) - fixedPoint, w.forceOnVoxmapWorld);
   EXPECT_NEAR(glm::length(total), 0.0, 1e-9 * glm::length(w.forceOnShellWorld));
 }
 
@@ -140,7 +143,8 @@ TEST(TangentPlaneForce, DampingUsesTheRelativeVelocityOfBothMovingAndTurningBodi
       m->angularVelocityWorld = -m->angularVelocityWorld;
     }
   }
-  EXPECT_EQ(checked, static_cast<int>(pair.contacts.size())) << "every contact approaches one way or the other";
+  EXPECT_EQ(checked, static_cast<int>(pair.contacts.size()))
+      << "every contact approaches one way or the other";
 }
 
 }  // namespace

@@ -72,9 +72,8 @@ double totalEdgeLength(const MeshFeatures& f) {
 }
 
 bool hasEdge(const MeshFeatures& f, const glm::vec3& a, const glm::vec3& b) {
-  return std::any_of(f.featureEdges.begin(), f.featureEdges.end(), [&](const auto& e) {
-    return (e[0] == a && e[1] == b) || (e[0] == b && e[1] == a);
-  });
+  return std::any_of(f.featureEdges.begin(), f.featureEdges.end(),
+                     [&](const auto& e) { return (e[0] == a && e[1] == b) || (e[0] == b && e[1] == a); });
 }
 
 /// Whether each coordinate of `p` is 0 or 1.
@@ -319,14 +318,16 @@ TEST(QuasiPlanar, CylinderCapsAreOnePolygonEachAtAnyVoxelSize) {
     ASSERT_EQ(topIds.size(), 1u) << voxelSizeM;
     // and no side triangle is part of a cap
     std::size_t inCaps = 0;
-    for (const std::uint32_t p : f.polygonOfTriangle) inCaps += p == *bottomIds.begin() || p == *topIds.begin();
+    for (const std::uint32_t p : f.polygonOfTriangle)
+      inCaps += p == *bottomIds.begin() || p == *topIds.begin();
     EXPECT_EQ(inCaps, 2u * Cylinder::kSegments) << voxelSizeM;
   }
 }
 
 TEST(QuasiPlanar, CylinderRimsAreFeatureEdgesAndCapCentresAreNotVertices) {
   const Cylinder c;
-  const double perimeterM = 2.0 * Cylinder::kSegments * Cylinder::kRadiusM * std::sin(std::numbers::pi / Cylinder::kSegments);
+  const double perimeterM =
+      2.0 * Cylinder::kSegments * Cylinder::kRadiusM * std::sin(std::numbers::pi / Cylinder::kSegments);
   for (const double voxelSizeM : {1e-4, 0.001, 0.05, 10.0}) {
     const MeshFeatures f = extractFeatures(c.mesh, voxelSizeM);
     double bottomM = 0.0;

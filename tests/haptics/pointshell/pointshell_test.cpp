@@ -70,7 +70,8 @@ TEST(Pointshell, PointsOfAChunkAreContiguousAndCentroidsAreTheirMeans) {
     for (std::uint32_t i = s.chunkBegin[c]; i < s.chunkBegin[c + 1]; ++i) {
       sum += glm::dvec3(s.positionsLocal[i]);
       // every point of the chunk lies within one chunk of its centroid
-      EXPECT_LT(glm::length(glm::dvec3(s.positionsLocal[i]) - glm::dvec3(s.chunkCentroidsLocal[c])), chunkM * std::sqrt(3.0));
+      EXPECT_LT(glm::length(glm::dvec3(s.positionsLocal[i]) - glm::dvec3(s.chunkCentroidsLocal[c])),
+                chunkM * std::sqrt(3.0));
     }
     const double n = s.chunkBegin[c + 1] - s.chunkBegin[c];
     EXPECT_LT(glm::length(sum / n - glm::dvec3(s.chunkCentroidsLocal[c])), 1e-6);
@@ -115,7 +116,8 @@ TEST(Pointshell, FreeLayerLiesOutsideAtItsDistanceWithOutwardNormals) {
   for (std::size_t i = 0; i < shell.size(); ++i) {
     const glm::dvec3 p = glm::dvec3(shell.positionsLocal[i]) - centre;
     // exact distance to the cube's surface from outside
-    const glm::dvec3 out = glm::sign(p) * glm::max(glm::abs(p) - 0.005, 0.0);  // from the nearest surface point
+    const glm::dvec3 out =
+        glm::sign(p) * glm::max(glm::abs(p) - 0.005, 0.0);  // from the nearest surface point
     const double distance = glm::length(out);
     ASSERT_GT(distance, (layer - 0.5) * s) << i;
     ASSERT_LT(distance, std::sqrt(3.0) * (layer + 1.5) * s) << i;

@@ -546,7 +546,8 @@ TEST(GltfLoader, NumbersDuplicateObjectNamesWithAWarning) {
 
 TEST(GltfLoader, ANodeWithoutMeshOrExtrasHoldingPartsIsAGroup) {
   TempDir dir;
-  const Scene scene = loadGltfScene(test::writeDoc(test::pistonAssemblyDoc(), dir.path(), "piston", BufferStorage::Glb));
+  const Scene scene =
+      loadGltfScene(test::writeDoc(test::pistonAssemblyDoc(), dir.path(), "piston", BufferStorage::Glb));
 
   ASSERT_EQ(scene.objects.size(), 3u);  // every mesh node is still an object of its own
   EXPECT_EQ(scene.objects[0].name, "crown");

@@ -19,7 +19,8 @@ Scene sphereOverPlate() {
   Scene scene;
   scene.objects.push_back(test::plate());
   scene.objects.push_back(test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
-    appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, kRadius + 0.002)), kRadius, 4);
+    appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, kRadius + 0.002)), kRadius,
+                         4);
   }));
   return scene;
 }
@@ -29,7 +30,8 @@ Scene barOverPlate() {
   Scene scene;
   scene.objects.push_back(test::plate());
   scene.objects.push_back(test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
-    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.032)), glm::dvec3(0.004, 0.004, 0.03));
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.032)),
+              glm::dvec3(0.004, 0.004, 0.03));
   }));
   return scene;
 }
@@ -60,14 +62,16 @@ std::vector<PointContact> bruteForceContacts(const SimModel& model, const SimSta
 /// `centre`, faster than MaxTravel lets the part follow: down to 2.5 mm into the plate, and
 /// in one run of eight poses out of four lifted 40 mm, out of the plate's grid.
 MotionScript randomMotion(unsigned seed, double periodS, double durationS,
-                          const glm::dvec3& centre = glm::dvec3(0.0, 0.0, kRadius + 0.002), double turnRad = 1.5) {
+                          const glm::dvec3& centre = glm::dvec3(0.0, 0.0, kRadius + 0.002),
+                          double turnRad = 1.5) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::vector<MotionKeyframe> keys;
   for (double t = 0.0; t <= durationS; t += periodS) {
     const double lift = (keys.size() / 8) % 4 == 3 ? 0.04 : 0.0;
     const glm::dvec3 shift(0.006 * unit(random), 0.006 * unit(random), -0.0015 + 0.003 * unit(random) + lift);
-    const glm::dquat turn = quatFromRotationVector(turnRad * glm::dvec3(unit(random), unit(random), unit(random)));
+    const glm::dquat turn =
+        quatFromRotationVector(turnRad * glm::dvec3(unit(random), unit(random), unit(random)));
     keys.push_back({t, Pose{centre - turn * centre + shift, turn}});
   }
   return MotionScript(std::move(keys), "random motion");
@@ -119,7 +123,8 @@ TEST_P(CoherenceUnderRandomMotion, NoPointReachesTheForceLayerUntested) {
       const std::uint64_t skippedBefore = sim.workspace.counters.pairsSkipped;
       sim.stepWithDevices(devices);
       const PointQueues& queues = sim.workspace.coherence.front().queues();
-      std::vector<double> stillLate(lateTravelM.size(), -1.0);  // a late run ends when the point leaves contact
+      std::vector<double> stillLate(lateTravelM.size(),
+                                    -1.0);  // a late run ends when the point leaves contact
       for (const PointContact& c : expected) {
         if (queues.queueOf(c.point) == 0) continue;
         const bool throughAFace = param.awareness && c.value == kValueInterior &&
@@ -170,7 +175,9 @@ const RandomMotionCase kRandomMotionCases[] = {
 };
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CoherenceUnderRandomMotion, testing::ValuesIn(kRandomMotionCases),
-                         [](const testing::TestParamInfo<RandomMotionCase>& info) { return info.param.name; });
+                         [](const testing::TestParamInfo<RandomMotionCase>& info) {
+                           return info.param.name;
+                         });
 
 TEST(Coherence, MaxTravelHoldsEveryPointOfTheObject) {
   const Scene scene = sphereOverPlate();
@@ -186,7 +193,8 @@ TEST(Coherence, MaxTravelHoldsEveryPointOfTheObject) {
     const Pose after = objectPose(model, state, 0);
     double farthestM = 0.0;
     for (const glm::vec3& p : shell.positionsLocal) {
-      farthestM = std::max(farthestM, glm::length(apply(after, glm::dvec3(p)) - apply(before, glm::dvec3(p))));
+      farthestM =
+          std::max(farthestM, glm::length(apply(after, glm::dvec3(p)) - apply(before, glm::dvec3(p))));
     }
     ASSERT_LE(farthestM, sim.object(0).maxTravelM * (1.0 + 1e-9) + 1e-12) << "frame " << frame;
     ASSERT_LE(sim.object(0).maxTravelM, 0.5 * kVoxel);
@@ -246,7 +254,8 @@ TEST(Coherence, FarInRangeTheChunksCollapseAndMaxTravelRisesUntilTheyComeBack) {
   // a tall post makes the plate's grid tall: the ball is in range but far from every surface
   Scene scene = sphereOverPlate();
   scene.objects.push_back(test::meshObject("post", ObjectRole::Static, [](TriangleMesh& m) {
-    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.045, 0.045, 0.05)), glm::dvec3(0.004, 0.004, 0.05));
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.045, 0.045, 0.05)),
+              glm::dvec3(0.004, 0.004, 0.05));
   }));
   scene.objects[1] = test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
     appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.05)), kRadius, 4);

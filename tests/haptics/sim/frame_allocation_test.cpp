@@ -19,19 +19,37 @@ void* allocate(std::size_t bytes) {
 }
 }  // namespace
 
-void* operator new(std::size_t bytes) { return allocate(bytes); }
-void* operator new[](std::size_t bytes) { return allocate(bytes); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void* operator new(std::size_t bytes) {
+  return allocate(bytes);
+}
+void* operator new[](std::size_t bytes) {
+  return allocate(bytes);
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
 void* operator new(std::size_t bytes, const std::nothrow_t&) noexcept {
   if (countingAllocations) ++allocations;
   return std::malloc(bytes ? bytes : 1);
 }
-void* operator new[](std::size_t bytes, const std::nothrow_t& tag) noexcept { return operator new(bytes, tag); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void* operator new[](std::size_t bytes, const std::nothrow_t& tag) noexcept {
+  return operator new(bytes, tag);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
 
 namespace voxhap {
 namespace {
@@ -49,7 +67,8 @@ TEST(FrameAllocation, SteppingTwoCoupledObjectsInContactAllocatesNothing) {
   options.pointSpacingM = 0.0005;
   options.sim.gravityWorld = glm::dvec3(0.0, 0.0, -9.81);
   const SimModel model = buildSceneModel(scene, {"a", "b"}, options);
-  const MotionScript script({{0.0, Pose{}}, {0.2, Pose{glm::dvec3(0.002, 0.0, -0.001), identityQuat()}}}, "push");
+  const MotionScript script({{0.0, Pose{}}, {0.2, Pose{glm::dvec3(0.002, 0.0, -0.001), identityQuat()}}},
+                            "push");
   ScriptedDevice da(script);
   ScriptedDevice db(script);
   HapticDevice* devices[] = {&da, &db};

@@ -4,8 +4,8 @@
 // into its socket, two moving parts pressed together. Each at three voxel sizes, checked
 // against exact geometry: Embree probes a quarter voxel apart over both surfaces, both
 // directions (app/exact_checks.h), every few frames and at the end. The bound is
-// a tenth of the static voxel. Every frame runs with floating-point traps on. Each case prints its figures (exact depth, force felt at
-// the handle, frames to rest) for the closing notes.
+// a tenth of the static voxel. Every frame runs with floating-point traps on. Each case prints its figures
+// (exact depth, force felt at the handle, frames to rest) for the closing notes.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -62,10 +62,10 @@ struct Case {
 };
 
 struct Outcome {
-  double depthM = 0.0;       ///< deepest exact penetration seen, beyond the loaded one, m
+  double depthM = 0.0;  ///< deepest exact penetration seen, beyond the loaded one, m
   std::string where;
-  double feltForceN = 0.0;   ///< at the end, the largest over the handles, N
-  int restFrame = 0;         ///< first frame from which every object stays at rest (−1: never)
+  double feltForceN = 0.0;          ///< at the end, the largest over the handles, N
+  int restFrame = 0;                ///< first frame from which every object stays at rest (−1: never)
   std::uint64_t limitedFrames = 0;  ///< frames in which the depth limits bound the step
 };
 
@@ -130,11 +130,13 @@ Outcome run(const std::string& name, const Case& c) {
     out.feltForceN = std::max(out.feltForceN, glm::length(f.feedback.forceWorld));
   }
   out.limitedFrames = sim.workspace.counters.depthLimitedFrames;
-  std::printf("[ figures  ] %-40s voxel %.2f mm: exact depth %.4f mm (%.3f voxel)%s%s, felt %.2f N, rest at frame %d, "
-              "limited %llu of %d frames\n",
-              name.c_str(), c.voxelM * 1e3, out.depthM * 1e3, out.depthM / c.voxelM, out.where.empty() ? "" : ", ",
-              out.where.c_str(), out.feltForceN, out.restFrame, static_cast<unsigned long long>(out.limitedFrames),
-              c.frames);
+  std::printf(
+      "[ figures  ] %-40s voxel %.2f mm: exact depth %.4f mm (%.3f voxel)%s%s, felt %.2f N, rest at frame "
+      "%d, "
+      "limited %llu of %d frames\n",
+      name.c_str(), c.voxelM * 1e3, out.depthM * 1e3, out.depthM / c.voxelM, out.where.empty() ? "" : ", ",
+      out.where.c_str(), out.feltForceN, out.restFrame, static_cast<unsigned long long>(out.limitedFrames),
+      c.frames);
   return out;
 }
 
@@ -173,7 +175,9 @@ TEST(NonPenetration, BoxPressedIntoAPlateByTwoToFiveHundredMillimetres) {
 TEST(NonPenetration, BoxTiltedTenDegreesWhilePressed) {
   for (const double voxelM : kVoxelsM) {
     for (const double pressM : {0.002, 0.05}) {
-      Case c{boxOverPlate(0.01), {"box"}, {ramp(moved(0.0, 0.0, -0.0025 - pressM, glm::dvec3(0.1745, 0.0, 0.0)), 0.3)},
+      Case c{boxOverPlate(0.01),
+             {"box"},
+             {ramp(moved(0.0, 0.0, -0.0025 - pressM, glm::dvec3(0.1745, 0.0, 0.0)), 0.3)},
              voxelM};
       expectWithinBound("box tilted 10° pressed " + std::to_string(int(pressM * 1e3)) + " mm", c);
     }
@@ -206,7 +210,8 @@ TEST(NonPenetration, BoxDraggedAlongAWallWhilePressedIntoIt) {
       // 10 mm into the wall in 0.2 s, then 30 mm along it at 0.1 m/s, twisting 10°
       const double into = std::min(1.0, t / 0.2);
       const double along = std::clamp((t - 0.2) / 0.3, 0.0, 1.0);
-      return moved(-(0.0025 + 0.01) * into, 0.03 * along, -0.01 * along, glm::dvec3(0.0, 0.0, 0.1745 * along));
+      return moved(-(0.0025 + 0.01) * into, 0.03 * along, -0.01 * along,
+                   glm::dvec3(0.0, 0.0, 0.1745 * along));
     };
     expectWithinBound("box dragged along a wall", Case{boxBesideWall(), {"box"}, {drag}, voxelM, 0.0, 700});
   }
@@ -236,7 +241,8 @@ Case twistedBar(double voxelM) {
 }
 
 TEST(NonPenetration, BarTwistedAgainstAnEdge) {
-  for (const double voxelM : {0.001, 0.0007}) expectWithinBound("bar twisted against an edge", twistedBar(voxelM));
+  for (const double voxelM : {0.001, 0.0007})
+    expectWithinBound("bar twisted against an edge", twistedBar(voxelM));
 }
 
 // DISABLED (known failure): at 0.5 mm the bar's edge cuts 0.65 mm (1.3 voxels) into the
@@ -253,8 +259,9 @@ TEST(NonPenetration, LongThinRodLeveredOverAnEdge) {
       const double down = std::min(1.0, t / 0.4);
       return moved(0.0, 0.0, -0.004 * down, glm::dvec3(0.0, 0.5 * down, 0.0));
     };
-    expectWithinBound("rod levered over an edge",
-                      Case{barOverEdge(glm::dvec3(0.06, 0.002, 0.002), 0.0025), {"bar"}, {lever}, voxelM, 0.0, 800});
+    expectWithinBound(
+        "rod levered over an edge",
+        Case{barOverEdge(glm::dvec3(0.06, 0.002, 0.002), 0.0025), {"bar"}, {lever}, voxelM, 0.0, 800});
   }
 }
 
@@ -275,7 +282,8 @@ Scene pegAndBlock(double clearanceM, double liftM, bool overHole) {
 TEST(NonPenetration, PegRestingOnAFaceWithItsHandleBelowIt) {
   for (const double voxelM : {0.0005, 0.00035, 0.00025}) {
     // off the hole, on the top face, handle 2 mm under the face
-    Case c{pegAndBlock(0.0002, 0.001, false), {"peg"}, {ramp(moved(0.0, 0.0, -0.003), 0.1)}, voxelM, 0.0, 500};
+    Case c{
+        pegAndBlock(0.0002, 0.001, false), {"peg"}, {ramp(moved(0.0, 0.0, -0.003), 0.1)}, voxelM, 0.0, 500};
     expectWithinBound("peg on a face, handle 2 mm below", c);
   }
 }
@@ -302,7 +310,8 @@ TEST(NonPenetration, PegPulledSidewaysWhileSlidingInItsHole) {
 TEST(NonPenetration, DISABLED_SeatedBallPressedIntoItsSocket) {
   for (const double voxelM : {0.0007, 0.0005, 0.00035}) {
     for (const double pressM : {0.0005, 0.005}) {
-      Case c{makeBallAndSocket(), {"ball"}, {ramp(moved(0.0, 0.0, -pressM), 0.1)}, voxelM, -0.5 * voxelM, 300};
+      Case c{makeBallAndSocket(), {"ball"}, {ramp(moved(0.0, 0.0, -pressM), 0.1)}, voxelM,
+             -0.5 * voxelM,       300};
       c.fromLoadedDepth = true;
       expectWithinBound("seated ball pressed " + std::to_string(pressM * 1e3).substr(0, 3) + " mm", c);
     }
@@ -316,14 +325,18 @@ Scene twoBoxes() {
     appendBox(m, at(-0.0115, 0.0001, 0.0), glm::dvec3(0.01, 0.01, 0.01));
   }));
   scene.objects.push_back(test::meshObject("right", ObjectRole::Dynamic, [](TriangleMesh& m) {
-    appendBox(m, glm::rotate(at(0.0065, -0.0002, 0.0003), 0.1, glm::dvec3(0.0, 0.0, 1.0)), glm::dvec3(0.005, 0.005, 0.005));
+    appendBox(m, glm::rotate(at(0.0065, -0.0002, 0.0003), 0.1, glm::dvec3(0.0, 0.0, 1.0)),
+              glm::dvec3(0.005, 0.005, 0.005));
   }));
   return scene;
 }
 
 TEST(NonPenetration, TwoMovingPartsPressedTogetherByTheirHandles) {
   for (const double voxelM : kVoxelsM) {
-    Case c{twoBoxes(), {"left", "right"}, {ramp(moved(0.02, 0.0, 0.0), 0.2), ramp(moved(-0.02, 0.0, 0.0), 0.2)}, voxelM};
+    Case c{twoBoxes(),
+           {"left", "right"},
+           {ramp(moved(0.02, 0.0, 0.0), 0.2), ramp(moved(-0.02, 0.0, 0.0), 0.2)},
+           voxelM};
     expectWithinBound("two moving boxes pressed together", c);
   }
 }

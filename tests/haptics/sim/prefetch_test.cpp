@@ -25,7 +25,8 @@ Scene plateAndBall() {
   Scene scene;
   scene.objects.push_back(test::plate());
   scene.objects.push_back(test::meshObject("post", ObjectRole::Static, [](TriangleMesh& m) {
-    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.02, 0.02, 0.01)), glm::dvec3(0.004, 0.004, 0.01));
+    appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.02, 0.02, 0.01)),
+              glm::dvec3(0.004, 0.004, 0.01));
   }));
   scene.objects.push_back(test::meshObject("ball", ObjectRole::Dynamic, [](TriangleMesh& m) {
     appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 0.012)), 0.01, 4);
@@ -33,7 +34,9 @@ Scene plateAndBall() {
   return scene;
 }
 
-std::vector<const SceneObject*> staticObjects(const Scene& scene) { return {&scene.objects[0], &scene.objects[1]}; }
+std::vector<const SceneObject*> staticObjects(const Scene& scene) {
+  return {&scene.objects[0], &scene.objects[1]};
+}
 
 VoxelizeOptions voxelOptions() {
   VoxelizeOptions options;
@@ -80,7 +83,8 @@ protected:
 };
 
 TEST_F(Prefetch, AVoxmapThatFitsItsBudgetIsWholeAndHasNoPager) {
-  const BudgetedVoxmap whole = voxelizeWithinBudget(staticObjects(scene_), voxelOptions(), cache(), 1ull << 34);
+  const BudgetedVoxmap whole =
+      voxelizeWithinBudget(staticObjects(scene_), voxelOptions(), cache(), 1ull << 34);
   EXPECT_FALSE(whole.pager);
   EXPECT_GT(whole.wordBytes, 0u);
   EXPECT_TRUE(whole.warnings.empty());
@@ -88,7 +92,8 @@ TEST_F(Prefetch, AVoxmapThatFitsItsBudgetIsWholeAndHasNoPager) {
 
 TEST_F(Prefetch, PagedWordsAreTheWholeVoxmapsAndEvictedOnesReadMissing) {
   const Voxmap whole = voxelizeCached(staticObjects(scene_), voxelOptions(), cache()).voxelized.voxmap;
-  BudgetedVoxmap paged = voxelizeWithinBudget(staticObjects(scene_), voxelOptions(), cache(), budgetFor(whole, 64));
+  BudgetedVoxmap paged =
+      voxelizeWithinBudget(staticObjects(scene_), voxelOptions(), cache(), budgetFor(whole, 64));
   ASSERT_TRUE(paged.pager);
   EXPECT_EQ(paged.pager->slotCount(), 64u);
   const std::size_t missingAtFirst = expectResidentWordsMatch(paged.voxmap, whole);  // uniform chunks only
@@ -147,7 +152,9 @@ Models models(const Scene& scene, const CacheOptions& cache, double capacity) {
   options.pointSpacingM = kVoxel;
   options.sim.coherence.capacityTests = capacity;
   options.voxelizeFn = [cache](std::span<const SceneObject* const> objects, const VoxelizeOptions& o,
-                               const ProgressFn&) { return voxelizeCached(objects, o, cache).voxelized.voxmap; };
+                               const ProgressFn&) {
+    return voxelizeCached(objects, o, cache).voxelized.voxmap;
+  };
   SimModel whole = buildSceneModel(scene, {"ball"}, options);
   const std::uint64_t budget = budgetFor(*whole.staticVoxmap, 192);
   options.budgetedVoxelizeFn = [cache, budget](std::span<const SceneObject* const> objects,
@@ -167,7 +174,8 @@ TEST_F(Prefetch, FramesAreSuspendedNeverWrongWhileVoxelsArePagedIn) {
   std::mt19937 random(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (int k = 0; k <= 30; ++k) {
-    keys.push_back({0.1 * k, Pose{glm::dvec3(0.02 * unit(random), 0.02 * unit(random), -0.003), identityQuat()}});
+    keys.push_back(
+        {0.1 * k, Pose{glm::dvec3(0.02 * unit(random), 0.02 * unit(random), -0.003), identityQuat()}});
   }
   ScriptedDevice device(MotionScript(keys, "sweep"));
   HapticDevice* devices[] = {&device};
@@ -178,10 +186,11 @@ TEST_F(Prefetch, FramesAreSuspendedNeverWrongWhileVoxelsArePagedIn) {
     // what the whole voxmap finds at this pose
     const Pointshell& shell = m.whole.objects[0].shell;
     std::vector<PointContact> contacts(shell.size());
-    const std::uint32_t expected = samplePoints(
-        shell, *m.whole.staticVoxmap,
-        VoxelTransform::make(objectPose(m.paged.model, state, 0), m.whole.staticVoxmap->grid()),
-        m.whole.pairs[0].fieldShifts, state.forceLayer, 0, static_cast<std::uint32_t>(shell.size()), contacts.data());
+    const std::uint32_t expected =
+        samplePoints(shell, *m.whole.staticVoxmap,
+                     VoxelTransform::make(objectPose(m.paged.model, state, 0), m.whole.staticVoxmap->grid()),
+                     m.whole.pairs[0].fieldShifts, state.forceLayer, 0,
+                     static_cast<std::uint32_t>(shell.size()), contacts.data());
     const Pose before = objectPose(m.paged.model, state, 0);
     sim.stepWithDevices(devices);
     ASSERT_FALSE(sim.workspace.stopped);
@@ -199,8 +208,10 @@ TEST_F(Prefetch, FramesAreSuspendedNeverWrongWhileVoxelsArePagedIn) {
       const PointQueues& queues = sim.workspace.coherence[0].queues();
       for (std::uint32_t i = 0; i < expected; ++i) {
         const PointContact& c = contacts[i];
-        const bool throughAFace = c.value == kValueInterior && shell.features[c.point] != PointFeature::Vertex;
-        ASSERT_TRUE(queues.queueOf(c.point) == 0 || throughAFace) << "frame " << frame << ", point " << c.point;
+        const bool throughAFace =
+            c.value == kValueInterior && shell.features[c.point] != PointFeature::Vertex;
+        ASSERT_TRUE(queues.queueOf(c.point) == 0 || throughAFace)
+            << "frame " << frame << ", point " << c.point;
       }
       contactFrames += expected > 0 ? 1 : 0;
     }

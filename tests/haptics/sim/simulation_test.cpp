@@ -1,5 +1,3 @@
-#include "haptics/sim/local_simulation.h"
-
 #include <cmath>
 #include <cstring>
 
@@ -8,6 +6,7 @@
 
 #include "haptics/core/error.h"
 #include "haptics/scene/builtin/builtin_scenes.h"
+#include "haptics/sim/local_simulation.h"
 #include "support/contact_scenes.h"
 
 namespace voxhap {
@@ -29,7 +28,8 @@ Scene sphereOverPlate(double radiusM, double gapM) {
   Scene scene;
   scene.objects.push_back(test::plate());
   scene.objects.push_back(test::meshObject("ball", ObjectRole::Dynamic, [&](TriangleMesh& m) {
-    appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, radiusM + gapM)), radiusM, 4);
+    appendGeodesicSphere(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, radiusM + gapM)), radiusM,
+                         4);
   }));
   return scene;
 }
@@ -71,7 +71,8 @@ TEST(Simulation, RaisingTheForceLayerLiftsTheSphereByAVoxelPerLayer) {
   for (int k = 0; k < 2; ++k) {
     LocalSimulation sim(model);
     SimState& state = sim.state;
-    ASSERT_TRUE(setForceLayer(model, state, sim.workspace, static_cast<std::uint8_t>(kDefaultForceLayer + 2 * k)));
+    ASSERT_TRUE(
+        setForceLayer(model, state, sim.workspace, static_cast<std::uint8_t>(kDefaultForceLayer + 2 * k)));
     runFree(sim, 1500, [](const SimState&) {});
     gap[k] = test::lowestZ(scene.objects[1], objectPose(model, state, 0));
   }
@@ -172,7 +173,8 @@ TEST(Simulation, CrossedRodsPushApartAlongTheCommonNormal) {
   const double half = 0.002;
   Scene scene;
   scene.objects.push_back(test::meshObject("lower", ObjectRole::Static, [&](TriangleMesh& m) {
-    appendBox(m, glm::rotate(glm::dmat4(1.0), M_PI / 4, glm::dvec3(1.0, 0.0, 0.0)), glm::dvec3(0.03, half, half));
+    appendBox(m, glm::rotate(glm::dmat4(1.0), M_PI / 4, glm::dvec3(1.0, 0.0, 0.0)),
+              glm::dvec3(0.03, half, half));
   }));
   const double edge = half * std::sqrt(2.0);  // height of the lower rod's top edge
   scene.objects.push_back(test::meshObject("upper", ObjectRole::Dynamic, [&](TriangleMesh& m) {
@@ -188,7 +190,8 @@ TEST(Simulation, CrossedRodsPushApartAlongTheCommonNormal) {
   EXPECT_LT(std::hypot(f.x, f.y), 0.1 * f.z) << f.x << " " << f.y << " " << f.z;
   double lowestGap = 1e9;
   runFree(sim, 300, [&](const SimState& s) {
-    lowestGap = std::min(lowestGap, test::lowestZ(scene.objects[1], s.bodies[0].pose(model.objects[0].body)) - edge);
+    lowestGap =
+        std::min(lowestGap, test::lowestZ(scene.objects[1], s.bodies[0].pose(model.objects[0].body)) - edge);
   });
   // pushed apart along the common normal (z), not sideways
   const glm::dvec3 moved = objectPose(model, state, 0).position;
@@ -264,7 +267,8 @@ TEST(Simulation, LongBarOnHundredsOfShallowContactsStaysCalm) {
   });
   EXPECT_GT(contacts, 200u);
   EXPECT_LT(fastestSpin, 0.05) << "rad/s; now " << state.bodies[0].angularVelocityWorld.x << " "
-                                << state.bodies[0].angularVelocityWorld.y << " " << state.bodies[0].angularVelocityWorld.z;
+                               << state.bodies[0].angularVelocityWorld.y << " "
+                               << state.bodies[0].angularVelocityWorld.z;
   const glm::dvec3 v = state.bodies[0].linearVelocityWorld;
   EXPECT_LT(glm::length(v), 1e-3) << v.x << " " << v.y << " " << v.z;
 }
@@ -272,10 +276,12 @@ TEST(Simulation, LongBarOnHundredsOfShallowContactsStaysCalm) {
 TEST(Simulation, TwoMovingBoxesCollideWithEqualAndOppositeForces) {
   Scene scene;
   for (int i = 0; i < 2; ++i) {
-    scene.objects.push_back(test::meshObject(i == 0 ? "left" : "right", ObjectRole::Dynamic, [&](TriangleMesh& m) {
-      const double x = i == 0 ? -0.0062 : 0.0061;
-      appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(x, 0.0003 * i, 0.0)), glm::dvec3(0.005, 0.004, 0.003 + 0.001 * i));
-    }));
+    scene.objects.push_back(
+        test::meshObject(i == 0 ? "left" : "right", ObjectRole::Dynamic, [&](TriangleMesh& m) {
+          const double x = i == 0 ? -0.0062 : 0.0061;
+          appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(x, 0.0003 * i, 0.0)),
+                    glm::dvec3(0.005, 0.004, 0.003 + 0.001 * i));
+        }));
   }
   const SimModel model = test::freeModel(scene, {"left", "right"}, kVoxel, glm::dvec3(0.0));
   ASSERT_EQ(model.pairs.size(), 1u);

@@ -32,7 +32,9 @@ constexpr int kSanitizerDivisor = 1;
 #endif
 
 /// Frames of a test: `frames` in the release build, fewer under AddressSanitizer.
-constexpr int framesOf(int frames) { return frames / kSanitizerDivisor; }
+constexpr int framesOf(int frames) {
+  return frames / kSanitizerDivisor;
+}
 
 constexpr double kVoxel = 0.001;  // m: coarse, for cheap frames
 constexpr double kGravityMPerS2 = 9.81;
@@ -52,7 +54,9 @@ constexpr double kCapacityTests = 1e9;
 
 using test::at;
 
-bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 bool finite(const glm::dquat& q) {
   return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
 }
@@ -71,25 +75,28 @@ testing::AssertionResult saneFrame(const LocalSimulation& sim) {
     const ObjectFrame& f = sim.object(i);
     if (!finite(b.comWorld) || !finite(b.orientation) || !finite(b.linearVelocityWorld) ||
         !finite(b.angularVelocityWorld)) {
-      return testing::AssertionFailure() << "object " << i << ": non-finite body state at frame " << state.frame;
+      return testing::AssertionFailure()
+             << "object " << i << ": non-finite body state at frame " << state.frame;
     }
     if (b.skippedSteps != 0) {
       return testing::AssertionFailure() << "object " << i << ": " << b.skippedSteps
                                          << " integration steps skipped by frame " << state.frame;
     }
     if (!finite(f.contactForceWorld) || !finite(f.contactTorqueWorld)) {
-      return testing::AssertionFailure() << "object " << i << ": non-finite contact wrench at frame " << state.frame;
+      return testing::AssertionFailure()
+             << "object " << i << ": non-finite contact wrench at frame " << state.frame;
     }
     if (!finite(f.feedback.forceWorld) || !finite(f.feedback.torqueWorld) || f.feedback.nonFiniteZeroed) {
-      return testing::AssertionFailure() << "object " << i << ": non-finite feedback at frame " << state.frame;
+      return testing::AssertionFailure()
+             << "object " << i << ": non-finite feedback at frame " << state.frame;
     }
     const double forceN = glm::length(f.feedback.forceWorld);
     const double torqueNm = glm::length(f.feedback.torqueWorld);
     // clamping scales to the limit; the length of the result may differ from it by rounding
     if (forceN > limits.maxForceN * (1.0 + 1e-12) || torqueNm > limits.maxTorqueNm * (1.0 + 1e-12)) {
-      return testing::AssertionFailure() << "object " << i << ": feedback " << forceN << " N, " << torqueNm
-                                         << " N·m beyond the limits " << limits.maxForceN << " N, "
-                                         << limits.maxTorqueNm << " N·m at frame " << state.frame;
+      return testing::AssertionFailure()
+             << "object " << i << ": feedback " << forceN << " N, " << torqueNm << " N·m beyond the limits "
+             << limits.maxForceN << " N, " << limits.maxTorqueNm << " N·m at frame " << state.frame;
     }
   }
   return testing::AssertionSuccess();
@@ -103,14 +110,16 @@ double mechanicalEnergyJ(const SimModel& model, const SimState& state) {
   double energyJ = 0.0;
   for (std::size_t i = 0; i < state.bodies.size(); ++i) {
     const RigidBodyModel& body = model.objects[i].body;
-    energyJ += kineticEnergyJ(body, state.bodies[i]) - body.massKg * glm::dot(model.gravityWorld, state.bodies[i].comWorld);
+    energyJ += kineticEnergyJ(body, state.bodies[i]) -
+               body.massKg * glm::dot(model.gravityWorld, state.bodies[i].comWorld);
   }
   return energyJ;
 }
 
 double totalKineticEnergyJ(const SimModel& model, const SimState& state) {
   double energyJ = 0.0;
-  for (std::size_t i = 0; i < state.bodies.size(); ++i) energyJ += kineticEnergyJ(model.objects[i].body, state.bodies[i]);
+  for (std::size_t i = 0; i < state.bodies.size(); ++i)
+    energyJ += kineticEnergyJ(model.objects[i].body, state.bodies[i]);
   return energyJ;
 }
 
@@ -130,15 +139,16 @@ public:
   testing::AssertionResult check(const SimModel& model, const SimState& state) {
     const double energyJ = mechanicalEnergyJ(model, state);
     if (energyJ > initialJ_ + toleranceJ_) {
-      return testing::AssertionFailure() << "energy " << energyJ << " J rose " << energyJ - initialJ_
-                                         << " J above its initial " << initialJ_ << " J at frame " << state.frame;
+      return testing::AssertionFailure()
+             << "energy " << energyJ << " J rose " << energyJ - initialJ_ << " J above its initial "
+             << initialJ_ << " J at frame " << state.frame;
     }
     if (state.timeS < settleS_) return testing::AssertionSuccess();
     if (energyJ < settledMinJ_) settledMinJ_ = energyJ;
     if (energyJ > settledMinJ_ + toleranceJ_) {
-      return testing::AssertionFailure() << "settled energy " << energyJ << " J rose " << energyJ - settledMinJ_
-                                         << " J above its lowest " << settledMinJ_ << " J at frame "
-                                         << state.frame;
+      return testing::AssertionFailure()
+             << "settled energy " << energyJ << " J rose " << energyJ - settledMinJ_ << " J above its lowest "
+             << settledMinJ_ << " J at frame " << state.frame;
     }
     return testing::AssertionSuccess();
   }
@@ -158,8 +168,8 @@ testing::AssertionResult abovePlate(const Scene& scene, const SimModel& model, c
   for (std::size_t i = 0; i < model.objects.size(); ++i) {
     const double lowestM = test::lowestZ(*scene.find(model.objects[i].name), objectPose(model, state, i));
     if (lowestM < 0.0) {
-      return testing::AssertionFailure() << model.objects[i].name << " " << -lowestM
-                                         << " m into the plate at frame " << state.frame;
+      return testing::AssertionFailure()
+             << model.objects[i].name << " " << -lowestM << " m into the plate at frame " << state.frame;
     }
   }
   return testing::AssertionSuccess();
@@ -170,7 +180,8 @@ testing::AssertionResult abovePlate(const Scene& scene, const SimModel& model, c
 void runPassive(const Scene& scene, LocalSimulation& sim, int frames, bool settles = true) {
   const SimModel& model = sim.model();
   const SimState& state = sim.state;
-  PassiveEnergy energy(mechanicalEnergyJ(model, state), settles ? kSettleS : std::numeric_limits<double>::infinity());
+  PassiveEnergy energy(mechanicalEnergyJ(model, state),
+                       settles ? kSettleS : std::numeric_limits<double>::infinity());
   for (int i = 0; i < frames; ++i) {
     sim.step();
     ASSERT_TRUE(saneFrame(sim));
@@ -199,7 +210,6 @@ SimModel passiveModel(const Scene& scene, const std::vector<std::string>& moving
   return model;
 }
 
-
 // ---------------------------------------------------------------------------------------
 // resting contact
 
@@ -218,7 +228,8 @@ TEST(StabilityStress, ObjectsRestingOnThePlateNeverGainEnergy) {
     appendGeodesicSphere(m, at(0.0, 0.02, 0.008 + kDropM), 0.008, 3);
   }));
   scene.objects.push_back(test::meshObject("cylinder", ObjectRole::Dynamic, [](TriangleMesh& m) {
-    appendCylinder(m, glm::rotate(at(0.025, -0.01, kDropM + 0.0003), 0.03, glm::dvec3(0.0, 1.0, 0.0)), 0.006, 0.012, 24);
+    appendCylinder(m, glm::rotate(at(0.025, -0.01, kDropM + 0.0003), 0.03, glm::dvec3(0.0, 1.0, 0.0)), 0.006,
+                   0.012, 24);
   }));
   const SimModel model = passiveModel(scene, {"box", "ball", "cylinder"});
   LocalSimulation sim(model);
@@ -244,7 +255,9 @@ Scene stackedBoxes(double ratio) {
     appendBox(m, at(0.0003, -0.0002, kDropM + heavyHalf.z), heavyHalf);
   }));
   scene.objects.push_back(test::meshObject("light", ObjectRole::Dynamic, [&](TriangleMesh& m) {
-    appendBox(m, glm::rotate(at(0.001, 0.0005, heavyTopM + kDropM + lightHalf.z + 0.0002), 0.02, glm::dvec3(1.0, 0.0, 0.0)),
+    appendBox(m,
+              glm::rotate(at(0.001, 0.0005, heavyTopM + kDropM + lightHalf.z + 0.0002), 0.02,
+                          glm::dvec3(1.0, 0.0, 0.0)),
               lightHalf);
   }));
   const double heavyVolume = 8.0 * heavyHalf.x * heavyHalf.y * heavyHalf.z;
@@ -365,7 +378,7 @@ SimModel draggedModel(const Scene& scene, double stiffnessMultiple, bool awarene
 
 /// What a drag must show besides the per-frame checks.
 struct DragBounds {
-  double followM = 0.005;     ///< the local origin stays this close to the handle's, m
+  double followM = 0.005;  ///< the local origin stays this close to the handle's, m
   /// No vertex of the box below this height, m: a tenth of a voxel into the plate, the
   /// bound of the non-penetration tests (the box is convex: its lowest point is a vertex).
   double lowestM = -0.1 * kVoxel;
@@ -458,7 +471,8 @@ TEST(StabilityStress, BarRestingOnHundredsOfContactsNeverGainsEnergy) {
     ASSERT_TRUE(saneFrame(sim));
     ASSERT_TRUE(energy.check(model, state));
     ASSERT_TRUE(abovePlate(scene, model, state));
-    if (state.timeS >= kBarSettleS) fewestSettledContacts = std::min(fewestSettledContacts, sim.object(0).contacts);
+    if (state.timeS >= kBarSettleS)
+      fewestSettledContacts = std::min(fewestSettledContacts, sim.object(0).contacts);
   }
   EXPECT_GE(fewestSettledContacts, 100u);
   EXPECT_LT(totalKineticEnergyJ(model, state), energy.toleranceJ());

@@ -46,7 +46,7 @@ TEST(BoxOverlap, SegmentsThroughPastAndTouching) {
   EXPECT_TRUE(segmentOverlapsBox({-2, 0, 0}, {2, 0.1, 0}, kCentre, kHalf));
   EXPECT_FALSE(segmentOverlapsBox({0.6, -2, 0}, {0.6, 2, 0}, kCentre, kHalf));
   EXPECT_TRUE(segmentOverlapsBox({0.5, -2, 0}, {0.5, 2, 0}, kCentre, kHalf));
-  EXPECT_FALSE(segmentOverlapsBox({1, 0, 0}, {2, 0, 0}, kCentre, kHalf));  // stops short
+  EXPECT_FALSE(segmentOverlapsBox({1, 0, 0}, {2, 0, 0}, kCentre, kHalf));             // stops short
   EXPECT_TRUE(segmentOverlapsBox({0.1, 0.1, 0.1}, {0.1, 0.1, 0.1}, kCentre, kHalf));  // a point inside
 }
 

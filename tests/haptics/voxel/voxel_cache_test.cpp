@@ -79,7 +79,8 @@ void expectSameVoxmap(const Voxmap& a, const Voxmap& b) {
   const glm::ivec3 d = a.grid().dimsVoxels();
   for (int z = 0; z < d.z; ++z) {
     for (int y = 0; y < d.y; ++y) {
-      for (int x = 0; x < d.x; ++x) ASSERT_EQ(a.word({x, y, z}), b.word({x, y, z})) << x << " " << y << " " << z;
+      for (int x = 0; x < d.x; ++x)
+        ASSERT_EQ(a.word({x, y, z}), b.word({x, y, z})) << x << " " << y << " " << z;
     }
   }
   const glm::ivec3 c = a.grid().dimsChunks();
@@ -104,7 +105,8 @@ protected:
   CacheOptions cache() const { return {dir_.path() / "voxels", true}; }
 
   /// A fresh build, then a corrupted copy of its file, then a run that must rebuild it.
-  void expectRebuiltAfter(const std::function<void(std::vector<char>&)>& corrupt, const std::string& warning) {
+  void expectRebuiltAfter(const std::function<void(std::vector<char>&)>& corrupt,
+                          const std::string& warning) {
     const CachedVoxelization first = voxelizeCached(objects_.both, voxelOptions(), cache());
     std::vector<char> bytes = readBytes(first.cacheFile);
     corrupt(bytes);
@@ -150,8 +152,9 @@ TEST_F(VoxelCache, MissThenHitGivesTheSameVoxmapAndStats) {
 }
 
 TEST_F(VoxelCache, FlippedByteIsRebuiltWithAWarning) {
-  expectRebuiltAfter([](std::vector<char>& b) { b[b.size() / 2] = static_cast<char>(b[b.size() / 2] ^ 0x10); },
-                     "checksum mismatch");
+  expectRebuiltAfter(
+      [](std::vector<char>& b) { b[b.size() / 2] = static_cast<char>(b[b.size() / 2] ^ 0x10); },
+      "checksum mismatch");
 }
 
 TEST_F(VoxelCache, TruncatedFileIsRebuiltWithAWarning) {
@@ -203,7 +206,8 @@ TEST_F(VoxelCache, KeyCoversVoxelSizeBitsAwarenessAndGeometry) {
 
 TEST_F(VoxelCache, UnwritableFolderOnlyWarns) {
   std::ofstream(dir_.path() / "blocker") << "a file where the folder should be";
-  const CachedVoxelization v = voxelizeCached(objects_.both, voxelOptions(), {dir_.path() / "blocker" / "voxels"});
+  const CachedVoxelization v =
+      voxelizeCached(objects_.both, voxelOptions(), {dir_.path() / "blocker" / "voxels"});
   EXPECT_FALSE(v.cacheHit);
   ASSERT_EQ(v.warnings.size(), 1u);
   EXPECT_NE(v.warnings[0].find("blocker"), std::string::npos) << v.warnings[0];

@@ -18,12 +18,12 @@ constexpr double kVoxel = 0.0005;
 /// A cube of side kSide whose faces cut through voxels (not on voxel boundaries).
 TriangleMesh offsetCube() {
   TriangleMesh m;
-  appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.123 * kVoxel + kSide / 2)), glm::dvec3(kSide / 2));
+  appendBox(m, glm::translate(glm::dmat4(1.0), glm::dvec3(0.123 * kVoxel + kSide / 2)),
+            glm::dvec3(kSide / 2));
   return m;
 }
 
-VoxelizedObject voxelizeOne(const TriangleMesh& mesh, double voxelSizeM, int threads = 0,
-                            int bits = 4) {
+VoxelizedObject voxelizeOne(const TriangleMesh& mesh, double voxelSizeM, int threads = 0, int bits = 4) {
   const TriangleMesh* meshes[] = {&mesh};
   const MeshFeatures features[] = {extractFeatures(mesh, voxelSizeM)};
   VoxelizeOptions options;
@@ -117,7 +117,9 @@ TEST(Voxelizer, SphereVoxelsAgreeWithTheAnalyticSphere) {
   }
   EXPECT_GT(checked, 50000);
   // volume: interior plus half the surface layer, against 4/3 π r³
-  const double volume = (static_cast<double>(v.stats.interiorVoxels) + 0.5 * static_cast<double>(v.stats.surfaceVoxels)) * s * s * s;
+  const double volume =
+      (static_cast<double>(v.stats.interiorVoxels) + 0.5 * static_cast<double>(v.stats.surfaceVoxels)) * s *
+      s * s;
   EXPECT_NEAR(volume, 4.0 / 3.0 * M_PI * r * r * r, 0.02 * 4.0 / 3.0 * M_PI * r * r * r);
 }
 

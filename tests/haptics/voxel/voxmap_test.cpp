@@ -21,7 +21,9 @@ std::pair<int, int> cubeVoxels(const VoxelGrid& grid, int axis, double lo) {
           static_cast<int>(std::floor((lo + kSide - grid.originLocal[axis]) / grid.voxelSizeM))};
 }
 
-int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+int floorDiv(int a, int b) {
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
 
 /// Two cubes 0.3 m apart along x (so that the grid holds chunks far from both), faces
 /// cutting through voxels.
@@ -109,21 +111,22 @@ TEST(Voxmap, PointsByFeatureFollowTheCubesCornersAndEdges) {
 TEST(Voxmap, ValidateRejectsIndicesBeyondTheArrays) {
   const TwoCubes cubes;
   const Voxmap& v = cubes.voxelized.voxmap;
-  EXPECT_EQ(Voxmap::validate(v.grid(), v.encoding(), v.hyperEntries(), v.chunkEntries(), v.voxelBytes().size(),
-                             v.chunkDistances().size()),
+  EXPECT_EQ(Voxmap::validate(v.grid(), v.encoding(), v.hyperEntries(), v.chunkEntries(),
+                             v.voxelBytes().size(), v.chunkDistances().size()),
             "");
   std::vector<std::uint32_t> chunks(v.chunkEntries().begin(), v.chunkEntries().end());
-  const auto mixed = std::find_if(chunks.begin(), chunks.end(), [](std::uint32_t e) { return !(e & Voxmap::kUniform); });
+  const auto mixed =
+      std::find_if(chunks.begin(), chunks.end(), [](std::uint32_t e) { return !(e & Voxmap::kUniform); });
   ASSERT_NE(mixed, chunks.end());
   *mixed = static_cast<std::uint32_t>(v.mixedChunkCount());
   EXPECT_NE(Voxmap::validate(v.grid(), v.encoding(), v.hyperEntries(), chunks, v.voxelBytes().size(),
                              v.chunkDistances().size()),
             "");
-  EXPECT_NE(Voxmap::validate(v.grid(), v.encoding(), v.hyperEntries(), v.chunkEntries(), v.voxelBytes().size() - 1,
-                             v.chunkDistances().size()),
+  EXPECT_NE(Voxmap::validate(v.grid(), v.encoding(), v.hyperEntries(), v.chunkEntries(),
+                             v.voxelBytes().size() - 1, v.chunkDistances().size()),
             "");
-  EXPECT_NE(Voxmap::validate(v.grid(), v.encoding(), v.hyperEntries(), v.chunkEntries(), v.voxelBytes().size(),
-                             v.chunkDistances().size() + 1),
+  EXPECT_NE(Voxmap::validate(v.grid(), v.encoding(), v.hyperEntries(), v.chunkEntries(),
+                             v.voxelBytes().size(), v.chunkDistances().size() + 1),
             "");
 }
 
