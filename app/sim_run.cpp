@@ -104,8 +104,6 @@ void FrameStats::add(const LocalSimulation& sim, double computeUsOfFrame) {
   sumDrifted += coherence.drifted;
   sumChunkTests += coherence.chunkTests;
   sumTravelScale += coherence.travelScale;
-  counters = sim.workspace.counters;
-  suspensions = sim.workspace.suspensions;
   for (const ObjectFrame& o : sim.outputs.objects) {
     maxContacts = std::max(maxContacts, o.contacts);
     sumContacts += o.contacts;
@@ -158,6 +156,8 @@ void runFrames(LocalSimulation& sim, std::span<HapticDevice* const> devices, std
     if (afterFrame) afterFrame(f, us);
     if (progress && f % 100 == 0) progress(static_cast<double>(f) / static_cast<double>(frames));
   }
+  stats.counters = sim.workspace.counters;
+  stats.suspensions = sim.workspace.suspensions;
   if (progress) progress(1.0);
 }
 

@@ -35,6 +35,17 @@ struct Pose {
   glm::dquat orientation = identityQuat();  ///< unit; rotates local axes to world axes
 };
 
+/// Whether every component is finite (no NaN, no infinity).
+inline bool isFinite(const glm::dvec3& v) noexcept {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+inline bool isFinite(const glm::dquat& q) noexcept {
+  return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+}
+inline bool isFinite(const Pose& pose) noexcept {
+  return isFinite(pose.position) && isFinite(pose.orientation);
+}
+
 /// `pose` applied to a local point: world point, m.
 inline glm::dvec3 apply(const Pose& pose, const glm::dvec3& pointLocal) noexcept {
   return pose.orientation * pointLocal + pose.position;

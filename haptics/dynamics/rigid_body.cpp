@@ -13,17 +13,9 @@
 namespace voxhap {
 namespace {
 
-bool finite(const glm::dvec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-bool finite(const glm::dquat& q) {
-  return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
-}
-
 bool finite(const RigidBodyState& s) {
-  return finite(s.comWorld) && finite(s.orientation) && finite(s.linearVelocityWorld) &&
-         finite(s.angularVelocityWorld);
+  return isFinite(s.comWorld) && isFinite(s.orientation) && isFinite(s.linearVelocityWorld) &&
+         isFinite(s.angularVelocityWorld);
 }
 
 std::string formatNumber(double v) {
@@ -75,7 +67,7 @@ RigidBodyModel makeRigidBodyModel(const MassProperties& mass, const std::string&
   if (!(mass.massKg > 0.0) || !std::isfinite(mass.massKg)) {
     throw Error(name + ": mass must be a positive number of kg, got " + formatNumber(mass.massKg));
   }
-  if (!finite(mass.comLocal)) throw Error(name + ": centre of mass is not finite");
+  if (!isFinite(mass.comLocal)) throw Error(name + ": centre of mass is not finite");
   const glm::dmat3 inertia = 0.5 * (mass.inertiaAboutComKgM2 + glm::transpose(mass.inertiaAboutComKgM2));
   const glm::dvec3 moments = symmetricEigenvalues(inertia);
   if (!(moments.x > 0.0) || !std::isfinite(moments.z)) {
@@ -138,7 +130,7 @@ glm::dvec3 pointVelocityWorld(const RigidBodyModel& model, const RigidBodyState&
 // L itself is exact (only τ·h changes it), so angular momentum is conserved to rounding.
 void integrate(const RigidBodyModel& model, RigidBodyState& state, const glm::dvec3& forceWorld,
                const glm::dvec3& torqueWorldAboutCom, double dtS) noexcept {
-  if (!finite(forceWorld) || !finite(torqueWorldAboutCom) || !(dtS >= 0.0) || !std::isfinite(dtS)) {
+  if (!isFinite(forceWorld) || !isFinite(torqueWorldAboutCom) || !(dtS >= 0.0) || !std::isfinite(dtS)) {
     ++state.skippedSteps;
     return;
   }

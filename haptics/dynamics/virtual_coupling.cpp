@@ -9,10 +9,6 @@
 namespace voxhap {
 namespace {
 
-bool finite(const glm::dvec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 std::string formatNumber(double v) {
   std::ostringstream s;
   s.precision(4);
@@ -134,7 +130,7 @@ CouplingWrench couplingWrench(const CouplingGains& gains, const Pose& handleWorl
 
 CouplingWrench deviceFeedback(const CouplingWrench& onBody, const DeviceLimits& limits) noexcept {
   CouplingWrench feedback;
-  if (!finite(onBody.forceWorld) || !finite(onBody.torqueWorld)) {
+  if (!isFinite(onBody.forceWorld) || !isFinite(onBody.torqueWorld)) {
     feedback.nonFiniteZeroed = true;
     return feedback;
   }

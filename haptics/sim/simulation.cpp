@@ -121,14 +121,11 @@ void planFrame(const SimModel& model, const SimState& state, SimWorkspace& ws, C
 
 /// Step 2 for one pair in range: its contacts, in ws.contacts; returns how many, and
 /// adds its tests to `tested` and its lookups of paged-out voxels to `missing`.
-std::uint32_t findContacts(const SimModel& model, const SimState& state, SimWorkspace& ws,
-                           CoherenceFrame& plan, std::size_t p, std::uint32_t& tested,
-                           std::uint32_t& missing) {
+std::uint32_t findContacts(const SimModel& model, SimWorkspace& ws, CoherenceFrame& plan, std::size_t p,
+                           const ContactParams& params, std::uint32_t& tested, std::uint32_t& missing) {
   const PairModel& pair = model.pairs[p];
   const Pointshell& shell = model.objects[static_cast<std::size_t>(pair.shellObject)].shell;
   const Voxmap& voxmap = model.voxmapOf(pair);
-  ContactParams params = pair.params;
-  params.forceLayer = state.forceLayer;
   const std::uint8_t sampledLayer = params.sampledLayer(voxmap.encoding().maxValue());
   const VoxelTransform& transform = ws.pairFrames[p].transform;
   if (ws.coherence.empty()) {
@@ -170,14 +167,8 @@ void suspendOrResume(SimWorkspace& ws, bool suspend, std::chrono::steady_clock::
   if (seconds > kMaxSuspensionS) ws.stopped = true;
 }
 
-bool finite(const glm::dvec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 bool finite(const HandleInput& h) {
-  const glm::dquat& q = h.poseWorld.orientation;
-  return finite(h.poseWorld.position) && std::isfinite(q.w) && finite(glm::dvec3(q.x, q.y, q.z)) &&
-         finite(h.velocity.linearWorld) && finite(h.velocity.angularWorld);
+  return isFinite(h.poseWorld) && isFinite(h.velocity.linearWorld) && isFinite(h.velocity.angularWorld);
 }
 
 }  // namespace
@@ -208,11 +199,11 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
         ws.coherence[p].skipFrame(plan.travelScale * ws.pairFrames[p].relativeTravelBoundM);
       continue;
     }
-    std::uint32_t tested = 0;
-    const std::uint32_t found = findContacts(model, state, ws, plan, p, tested, missing);
-    testedInFrame += tested;
     ContactParams params = pair.params;
     params.forceLayer = state.forceLayer;
+    std::uint32_t tested = 0;
+    const std::uint32_t found = findContacts(model, ws, plan, p, params, tested, missing);
+    testedInFrame += tested;
     const MovingObjectModel& shellObject = model.objects[static_cast<std::size_t>(pair.shellObject)];
     // rows for the contacts that the step can take past their limit (depth_limit.h)
     const double limitM = kDepthLimitVoxels * model.voxmapOf(pair).grid().voxelSizeM;
@@ -273,7 +264,7 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     glm::dvec3 torque = f.contactTorqueWorld;
     if (i < inputs.externalWrenches.size()) {
       const ExternalWrench& external = inputs.externalWrenches[i];
-      if (finite(external.forceWorld) && finite(external.torqueWorld)) {
+      if (isFinite(external.forceWorld) && isFinite(external.torqueWorld)) {
         force += external.forceWorld;
         torque += external.torqueWorld;
       } else {

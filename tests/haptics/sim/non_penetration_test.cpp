@@ -21,15 +21,13 @@
 #include "haptics/scene/builtin/builtin_scenes.h"
 #include "support/contact_scenes.h"
 #include "support/fp_traps.h"
+#include "support/sanitizers.h"
 
 namespace voxhap {
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kCheckEvery = 20;
-#else
-constexpr int kCheckEvery = 4;
-#endif
+/// Exact checks every this many frames, and after the last.
+constexpr int kCheckEvery = test::kAddressSanitizer ? 20 : 4;
 /// The bound: a tenth of a voxel.
 constexpr double kBoundVoxels = 0.1;
 /// At rest: no point of any moving object faster than this, m/s.

@@ -21,15 +21,12 @@
 
 #include "haptics/device/scripted_device.h"
 #include "support/contact_scenes.h"
+#include "support/sanitizers.h"
 
 namespace voxhap {
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kSanitizerDivisor = 10;
-#else
-constexpr int kSanitizerDivisor = 1;
-#endif
+constexpr int kSanitizerDivisor = test::kAddressSanitizer ? 10 : 1;
 
 /// Frames of a test: `frames` in the release build, fewer under AddressSanitizer.
 constexpr int framesOf(int frames) {
