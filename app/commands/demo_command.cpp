@@ -29,6 +29,7 @@ ExtractionOptions extractionOptionsFromArgs(const ParsedArgs& args, Console& con
   ExtractionOptions options;
   options.moving = args.value("move").value_or(kActuatorName);
   options.model = sceneModelOptionsFromArgs(args, console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
+  if (!args.has("capacity")) options.model.sim.coherence.capacityTests = kDemoCapacityTests;
   if (args.value("duration")) options.durationS = durationFromArgs(args, 0.0);
   if (const auto every = args.value("penetration-every")) {
     options.penetrationEvery = parseUnsigned(*every, "penetration-every");
@@ -141,8 +142,9 @@ Command demoCommand() {
       "The paper's maintenance task (§7): the hydraulic actuator of the built-in landing gear\n"
       "(generated on first use and cached under $VOXHAP_CACHE_DIR, $XDG_CACHE_HOME/voxhap or\n"
       "~/.cache/voxhap, as are its voxels) is pulled out by a scripted handle through the 6-DOF\n"
-      "virtual coupling, at 1 kHz simulated time, with time-critical sampling; a progress bar\n"
-      "goes to stderr on a terminal.\n\n"
+      "virtual coupling, at 1 kHz simulated time, with time-critical sampling at a fixed\n"
+      "capacity of 20,000 point tests a frame (--capacity), so that a loaded machine runs the\n"
+      "same job; a progress bar goes to stderr on a terminal.\n\n"
       "The path (assets/scripts/actuator-extract.txt): the actuator lies along x with its two\n"
       "eyes between the plates of two clevises, pins out. Straight along its axis each eye runs\n"
       "into its clevis base within 15 mm, so it cannot be pulled lengthwise: it leaves the\n"
@@ -161,11 +163,13 @@ Command demoCommand() {
       "reached the path's end.\n\n"
       "Exact penetration: the deepest any point of the actuator's surface gets inside a static\n"
       "part, or any point of the static surface inside the actuator, measured with Embree on\n"
-      "the meshes outside the timed frame. Both surfaces are sampled by probes a quarter of\n"
-      "a static voxel apart (--probe-spacing), on every triangle's vertices, edges and\n"
-      "interior, so that an edge or a face cutting in between vertices is seen; the static\n"
-      "surface only where the actuator comes near it. A probe is inside when rays from it\n"
-      "cross a part an odd number of times (three rays voting); its depth is its distance to\n"
+      "the meshes after the run, at the poses it recorded (probing between frames would evict\n"
+      "the frames' data from the caches and so slow, and change, the run). Both surfaces are\n"
+      "sampled by probes a quarter of a static voxel apart (--probe-spacing), on every\n"
+      "triangle's vertices, edges and interior, so that an edge or a face cutting in between\n"
+      "vertices is seen; the static surface only where the actuator comes near it. A probe\n"
+      "is inside when rays from it cross a part an odd number of times (three rays voting); its depth is its "
+      "distance to\n"
       "the other surface. To keep this cheap, voxmaps filter first (the static scene's, and\n"
       "the actuator's at the point spacing, voxelized through the cache): a probe in a\n"
       "free-space voxel of the other body is outside, one in an interior voxel inside, and\n"
