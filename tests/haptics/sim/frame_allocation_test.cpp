@@ -1,55 +1,11 @@
-// The 1 kHz frame never allocates (CONVENTIONS): global operator new is replaced in this
-// test binary by one that counts calls while `countingAllocations` is set.
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
+// The 1 kHz frame never allocates (CONVENTIONS): from the first frame on, stepping makes
+// no heap allocation on the thread that steps (support/allocation_counter.h).
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "haptics/scene/builtin/builtin_scenes.h"
+#include "support/allocation_counter.h"
 #include "support/contact_scenes.h"
-
-namespace {
-std::atomic<bool> countingAllocations{false};
-std::atomic<long> allocations{0};
-
-void* allocate(std::size_t bytes) {
-  if (countingAllocations) ++allocations;
-  if (void* p = std::malloc(bytes ? bytes : 1)) return p;
-  throw std::bad_alloc();
-}
-}  // namespace
-
-void* operator new(std::size_t bytes) {
-  return allocate(bytes);
-}
-void* operator new[](std::size_t bytes) {
-  return allocate(bytes);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void* operator new(std::size_t bytes, const std::nothrow_t&) noexcept {
-  if (countingAllocations) ++allocations;
-  return std::malloc(bytes ? bytes : 1);
-}
-void* operator new[](std::size_t bytes, const std::nothrow_t& tag) noexcept {
-  return operator new(bytes, tag);
-}
-void operator delete(void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
 
 namespace voxhap {
 namespace {
@@ -73,16 +29,40 @@ TEST(FrameAllocation, SteppingTwoCoupledObjectsInContactAllocatesNothing) {
   ScriptedDevice db(script);
   HapticDevice* devices[] = {&da, &db};
   LocalSimulation sim(model);
-  // the counter sees allocations
-  countingAllocations = true;
-  delete new int(1);
-  countingAllocations = false;
-  ASSERT_EQ(allocations.exchange(0), 1);
-  countingAllocations = true;
+  const test::AllocationCounter allocations;
   for (int i = 0; i < 200; ++i) sim.stepWithDevices(devices);
-  countingAllocations = false;
-  EXPECT_EQ(allocations.load(), 0);
+  EXPECT_EQ(allocations.count(), 0u);
   EXPECT_GT(sim.object(0).contacts + sim.object(1).contacts, 0u) << "the frames tested no contact";
+}
+
+TEST(FrameAllocation, TurningTheSeatedBallWithItsCapacityMeasuredOnlineAllocatesNothing) {
+  // the built-in ball and socket, the ball held by its handle, turned and pushed into the
+  // socket; time-critical sampling plans with the capacity measured from the frames' times
+  constexpr double voxel = 0.0005;
+  SceneModelOptions options;
+  options.staticVoxelSizeM = voxel;
+  options.pointSpacingM = voxel;
+  options.pointDisplacementM = -0.5 * voxel;
+  options.sim.gravityWorld = glm::dvec3(0.0, 0.0, -9.81);
+  ASSERT_EQ(options.sim.coherence.capacityTests, 0.0) << "the capacity is not measured online";
+  const SimModel model = buildSceneModel(makeBallAndSocket(), {"ball"}, options);
+  ASSERT_TRUE(model.objects[0].coupled);
+  LocalSimulation sim(model);
+  const Pose seated = objectPose(model, sim.state, 0);
+  HandleInput handle[1] = {{seated, {}}};
+  const ExternalWrench push[1] = {{glm::dvec3(0.0, 0.0, -2.0), glm::dvec3(0.0)}};
+  handle[0].velocity.angularWorld = glm::dvec3(0.0, 0.0, 0.002 / model.dtS);  // 2 mrad a frame
+  std::uint64_t contactFrames = 0;
+  const test::AllocationCounter allocations;
+  for (int i = 0; i < 300; ++i) {
+    handle[0].poseWorld.orientation =
+        glm::angleAxis(0.002 * i, glm::dvec3(0.0, 0.0, 1.0)) * seated.orientation;
+    sim.step(handle, push);
+    contactFrames += sim.object(0).contacts > 0 ? 1 : 0;
+  }
+  EXPECT_EQ(allocations.count(), 0u);
+  EXPECT_GT(contactFrames, 250u) << "the frames tested little contact";
+  EXPECT_GT(sim.outputs.coherence.tested, 0u);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "haptics/core/error.h"
 #include "haptics/device/scripted_device.h"
 #include "haptics/voxel/voxel_cache.h"
+#include "support/allocation_counter.h"
 #include "support/contact_scenes.h"
 #include "support/gltf_fixtures.h"
 
@@ -182,6 +183,7 @@ TEST_F(Prefetch, FramesAreSuspendedNeverWrongWhileVoxelsArePagedIn) {
   LocalSimulation sim(m.paged.model, m.paged.staticPager);
   SimState& state = sim.state;
   std::uint64_t contactFrames = 0;
+  std::uint64_t frameAllocations = 0;  // by the thread that steps
   for (int frame = 0; frame < 3000; ++frame) {
     // what the whole voxmap finds at this pose
     const Pointshell& shell = m.whole.objects[0].shell;
@@ -192,7 +194,9 @@ TEST_F(Prefetch, FramesAreSuspendedNeverWrongWhileVoxelsArePagedIn) {
                      m.whole.pairs[0].fieldShifts, state.forceLayer, 0,
                      static_cast<std::uint32_t>(shell.size()), contacts.data());
     const Pose before = objectPose(m.paged.model, state, 0);
+    const test::AllocationCounter allocations;
     sim.stepWithDevices(devices);
+    frameAllocations += allocations.count();
     ASSERT_FALSE(sim.workspace.stopped);
     if (sim.workspace.suspensions.active) {
       // a haptic loop waits for its next period; this one runs unpaced otherwise
@@ -218,6 +222,7 @@ TEST_F(Prefetch, FramesAreSuspendedNeverWrongWhileVoxelsArePagedIn) {
   }
   EXPECT_GT(sim.workspace.suspensions.count, 0u);
   EXPECT_GT(contactFrames, 300u);
+  EXPECT_EQ(frameAllocations, 0u) << "suspended or paging frames allocated";
   EXPECT_GT(m.paged.staticPager->blocksRead(), m.paged.staticPager->slotCount());  // it evicted
 }
 

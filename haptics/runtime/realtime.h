@@ -1,0 +1,32 @@
+#pragma once
+/// Real-time set-up of the haptic thread (DESIGN §7): memory locked (no page fault in a
+/// frame) and SCHED_FIFO, when the system permits. Each is tried and reported, never
+/// required: the caller prints the line that says what runs without them and why (the
+/// engine never prints).
+
+#include <string>
+
+namespace voxhap {
+
+/// One real-time measure: whether it took effect and, if not, why.
+struct RealtimeOutcome {
+  bool ok = false;
+  int errorCode = 0;  ///< the errno value of the refusal, 0 when ok
+  std::string error;  ///< its text (strerror), empty when ok
+};
+
+/// What requestRealtime() achieved.
+struct RealtimeStatus {
+  RealtimeOutcome memoryLock;  ///< mlockall(MCL_CURRENT | MCL_FUTURE), for the whole process
+  RealtimeOutcome fifo;        ///< SCHED_FIFO at the asked priority, for the calling thread
+  int fifoPriority = 0;        ///< the priority asked
+};
+
+/// Locks the process's memory, present and future, and puts the calling thread under
+/// SCHED_FIFO at `fifoPriority` (1 … 99 on Linux); tries both whatever the first gives.
+/// Call it after loading, from the haptic thread: with MCL_FUTURE every later mapping (a
+/// new thread's whole stack too) is locked and, unprivileged, counts against RLIMIT_MEMLOCK. Set-up time
+/// only: allocates the messages; never throws for a refusal.
+RealtimeStatus requestRealtime(int fifoPriority);
+
+}  // namespace voxhap
