@@ -97,7 +97,8 @@ Command voxhapCommands() {
       "  voxhap demo\n"
       "  voxhap bench table1\n"
       "  voxhap scene info assets/ball-and-socket.glb --json";
-  root.subcommands = {sceneCommand(), voxelizeCommand(), simulateCommand(), benchCommand(), demoCommand()};
+  root.subcommands = {sceneCommand(), voxelizeCommand(), simulateCommand(),
+                      benchCommand(), demoCommand(),     controllerCommand()};
   return root;
 }
 

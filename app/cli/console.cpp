@@ -8,6 +8,10 @@ void Console::warning(const std::string& message) {
   if (verbosity_ != Verbosity::Quiet) err_ << "voxhap: warning: " << message << '\n';
 }
 
+void Console::info(const std::string& message) {
+  if (verbosity_ != Verbosity::Quiet) err_ << "voxhap: " << message << std::endl;
+}
+
 void Console::note(const std::string& message) {
   if (verbosity_ == Verbosity::Verbose) err_ << "voxhap: " << message << '\n';
 }

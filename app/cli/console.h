@@ -25,6 +25,8 @@ public:
 
   /// "voxhap: warning: …", unless quiet.
   void warning(const std::string& message);
+  /// "voxhap: …", unless quiet: what a long-running command is doing.
+  void info(const std::string& message);
   /// A note shown only with -v.
   void note(const std::string& message);
   /// "voxhap: error: …", always.

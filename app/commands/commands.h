@@ -15,5 +15,7 @@ Command voxelizeCommand();
 Command benchCommand();
 /// `voxhap demo`: the main job on the built-in default scene.
 Command demoCommand();
+/// `voxhap controller`: the haptic controller serving front ends.
+Command controllerCommand();
 
 }  // namespace voxhap::cli

@@ -7,7 +7,8 @@ namespace voxhap::net {
 void appendFrame(std::string& out, std::string_view payload) {
   assert(payload.size() <= kMaxFrameBytes);
   const auto n = static_cast<std::uint32_t>(payload.size());
-  for (std::size_t i = 0; i < kFrameHeaderBytes; ++i) out.push_back(static_cast<char>((n >> (8 * i)) & 0xffu));
+  for (std::size_t i = 0; i < kFrameHeaderBytes; ++i)
+    out.push_back(static_cast<char>((n >> (8 * i)) & 0xffu));
   out.append(payload);
 }
 

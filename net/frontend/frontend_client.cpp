@@ -118,7 +118,8 @@ bool FrontendClient::readMessage(Duration timeout) {
     }
     if (r == FrameDecoder::Result::Frame) {
       pb::ServerMessage message;
-      if (!message.ParseFromString(payload)) throw Error("the controller sent a frame that is not a ServerMessage");
+      if (!message.ParseFromString(payload))
+        throw Error("the controller sent a frame that is not a ServerMessage");
       received_.push_back(std::move(message));
       return true;
     }
@@ -133,7 +134,8 @@ bool FrontendClient::readMessage(Duration timeout) {
     });
     io_.restart();
     const auto left = deadline - std::chrono::steady_clock::now();
-    io_.run_for(left > std::chrono::steady_clock::duration(0) ? left : std::chrono::steady_clock::duration(0));
+    io_.run_for(left > std::chrono::steady_clock::duration(0) ? left
+                                                              : std::chrono::steady_clock::duration(0));
     if (!done) {
       // time is up: cancel the read and let its handler run before `buffer` goes
       socket_.cancel();

@@ -16,7 +16,10 @@ using asio::ip::tcp;
 struct FrontendServer::State {
   State(asio::io_context& ioIn, const tcp::endpoint& endpoint, FrontendHandler& handlerIn,
         FrontendServerOptions optionsIn, LogFn logIn)
-      : io(ioIn), acceptor(ioIn, endpoint), handler(handlerIn), options(std::move(optionsIn)),
+      : io(ioIn),
+        acceptor(ioIn, endpoint),
+        handler(handlerIn),
+        options(std::move(optionsIn)),
         log(std::move(logIn)) {}
 
   asio::io_context& io;
@@ -33,14 +36,24 @@ struct FrontendServer::State {
 class FrontendServer::Session : public std::enable_shared_from_this<Session> {
 public:
   Session(std::shared_ptr<State> state, tcp::socket socket, std::uint64_t client)
-      : state_(std::move(state)), socket_(std::move(socket)), client_(client),
-        decoder_(state_->options.maxFrameBytes), updateTimer_(state_->io) {
+      : state_(std::move(state)),
+        socket_(std::move(socket)),
+        client_(client),
+        decoder_(state_->options.maxFrameBytes),
+        updateTimer_(state_->io) {
     asio::error_code ignored;
     const tcp::endpoint remote = socket_.remote_endpoint(ignored);
     peer_ = remote.address().to_string() + ":" + std::to_string(remote.port());
   }
 
   void start() { readMore(); }
+
+  /// Queues `message` unless the connection is closing; whether it did.
+  bool push(const pb::ServerMessage& message) {
+    if (closing_) return false;
+    send(message);
+    return true;
+  }
 
   /// Sends `error` (unless empty) and closes once everything queued is written.
   void closeAfter(const std::string& reason, std::uint64_t id, bool violation) {
@@ -112,20 +125,20 @@ private:
     pb::ServerMessage reply;
     reply.set_id(request.id());
     switch (request.request_case()) {
-    case pb::ClientMessage::kHello:
-      closeAfter("a second hello", request.id(), true);
-      return;
-    case pb::ClientMessage::kSubscribe:
-      subscribe(request.subscribe(), reply);
-      break;
-    case pb::ClientMessage::REQUEST_NOT_SET:
-      reply.mutable_error()->set_message("unknown request (a newer protocol?)");
-      break;
-    default:
-      state_->handler.handle(client_, request, reply);
-      break;
+      case pb::ClientMessage::kHello:
+        closeAfter("a second hello", request.id(), true);
+        return;
+      case pb::ClientMessage::kSubscribe:
+        subscribe(request.subscribe(), reply);
+        break;
+      case pb::ClientMessage::REQUEST_NOT_SET:
+        reply.mutable_error()->set_message("unknown request (a newer protocol?)");
+        break;
+      default:
+        state_->handler.handle(client_, request, reply);
+        break;
     }
-    send(reply);
+    if (reply.body_case() != pb::ServerMessage::BODY_NOT_SET) send(reply);  // else the handler replies later
   }
 
   void onHello(const pb::ClientMessage& request) {
@@ -135,8 +148,8 @@ private:
     }
     const pb::Hello& hello = request.hello();
     if (hello.protocol_version() != kProtocolVersion) {
-      closeAfter("protocol version " + std::to_string(hello.protocol_version()) + " (this controller speaks " +
-                     std::to_string(kProtocolVersion) + ")",
+      closeAfter("protocol version " + std::to_string(hello.protocol_version()) +
+                     " (this controller speaks " + std::to_string(kProtocolVersion) + ")",
                  request.id(), true);
       return;
     }
@@ -203,22 +216,23 @@ private:
   void writeNext() {
     writing_ = true;
     auto self = shared_from_this();
-    asio::async_write(socket_, asio::buffer(writeQueue_.front()), [this, self](asio::error_code ec, std::size_t) {
-      writeQueue_.pop_front();
-      if (ec) {
-        writeQueue_.clear();
-        writing_ = false;
-        closing_ = true;
-        finish();
-        return;
-      }
-      if (!writeQueue_.empty()) {
-        writeNext();
-        return;
-      }
-      writing_ = false;
-      if (closing_) finish();
-    });
+    asio::async_write(socket_, asio::buffer(writeQueue_.front()),
+                      [this, self](asio::error_code ec, std::size_t) {
+                        writeQueue_.pop_front();
+                        if (ec) {
+                          writeQueue_.clear();
+                          writing_ = false;
+                          closing_ = true;
+                          finish();
+                          return;
+                        }
+                        if (!writeQueue_.empty()) {
+                          writeNext();
+                          return;
+                        }
+                        writing_ = false;
+                        if (closing_) finish();
+                      });
   }
 
   void finish() {
@@ -262,9 +276,18 @@ FrontendServer::~FrontendServer() {
   close();
 }
 
-tcp::endpoint FrontendServer::endpoint() const { return state_->acceptor.local_endpoint(); }
+tcp::endpoint FrontendServer::endpoint() const {
+  return state_->acceptor.local_endpoint();
+}
 
-std::size_t FrontendServer::clients() const { return state_->sessions.size(); }
+std::size_t FrontendServer::clients() const {
+  return state_->sessions.size();
+}
+
+bool FrontendServer::send(std::uint64_t client, const pb::ServerMessage& message) {
+  const auto it = state_->sessions.find(client);
+  return it != state_->sessions.end() && it->second->push(message);
+}
 
 void FrontendServer::close() {
   asio::error_code ignored;

@@ -33,6 +33,8 @@ public:
   /// Fills the reply to a hello that passed the version and token checks.
   virtual void hello(pb::HelloReply& reply) = 0;
   /// Fills `reply`'s body for any request but Hello and Subscribe (an Error when it fails).
+  /// A body left empty defers the reply: the handler sends it later with
+  /// FrontendServer::send (a long load, say).
   virtual void handle(std::uint64_t client, const pb::ClientMessage& request, pb::ServerMessage& reply) = 0;
   /// Fills the newest frame for a subscriber.
   virtual void frameUpdate(pb::FrameUpdate& update) = 0;
@@ -50,12 +52,12 @@ struct FrontendServerOptions {
 
 /// Counts of what the server saw, for the controller's statistics.
 struct FrontendServerCounters {
-  std::uint64_t connections = 0;      ///< accepted
-  std::uint64_t refused = 0;          ///< over maxClients
-  std::uint64_t violations = 0;       ///< connections closed for breaking the protocol
-  std::uint64_t requests = 0;         ///< requests handled
-  std::uint64_t updatesSent = 0;      ///< FrameUpdate events
-  std::uint64_t updatesSkipped = 0;   ///< FrameUpdates not sent to a client that read too slowly
+  std::uint64_t connections = 0;     ///< accepted
+  std::uint64_t refused = 0;         ///< over maxClients
+  std::uint64_t violations = 0;      ///< connections closed for breaking the protocol
+  std::uint64_t requests = 0;        ///< requests handled
+  std::uint64_t updatesSent = 0;     ///< FrameUpdate events
+  std::uint64_t updatesSkipped = 0;  ///< FrameUpdates not sent to a client that read too slowly
 };
 
 class FrontendServer {
@@ -76,6 +78,9 @@ public:
   void close();
   const FrontendServerCounters& counters() const { return counters_; }
   std::size_t clients() const;
+  /// Queues `message` (a deferred reply, an event) for `client`; false when that client is
+  /// gone or closing. Comms thread only.
+  bool send(std::uint64_t client, const pb::ServerMessage& message);
 
 private:
   class Session;

@@ -52,7 +52,8 @@ protected:
     thread_.join();
   }
   // runs `fn` on the server's thread and returns its result
-  template <class Fn> auto onServer(Fn fn) {
+  template <class Fn>
+  auto onServer(Fn fn) {
     std::packaged_task<decltype(fn())()> task(fn);
     auto result = task.get_future();
     asio::post(io_, [&task] { task(); });
@@ -126,8 +127,8 @@ TEST_F(FrontendServerTest, BadFramesCloseTheirConnection) {
   options.maxFrameBytes = 1024;
   start(options);
   const std::vector<std::string> bad = {
-      std::string("\x01\x10\x00\x00", 4),                   // announces 4097 bytes
-      std::string("\x03\x00\x00\x00\xff\xff\xff", 7),       // not a protobuf message
+      std::string("\x01\x10\x00\x00", 4),              // announces 4097 bytes
+      std::string("\x03\x00\x00\x00\xff\xff\xff", 7),  // not a protobuf message
   };
   for (const std::string& bytes : bad) {
     FrontendClient client = connect();

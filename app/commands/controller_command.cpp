@@ -1,0 +1,114 @@
+// `voxhap controller`: the haptic controller process (controller/controller_run.h).
+
+#include <fstream>
+#include <sstream>
+
+#include "app/cache_options.h"
+#include "app/cli/command.h"
+#include "app/commands/commands.h"
+#include "app/controller/controller_run.h"
+#include "app/extraction.h"
+#include "app/sim_run.h"
+#include "haptics/core/error.h"
+
+namespace voxhap::cli {
+namespace {
+
+/// "HOST:PORT" (an IPv4 address or a bracketed IPv6 one) for --listen.
+void parseListen(const std::string& text, ControllerOptions& options) {
+  const std::size_t colon = text.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size())
+    throw UsageError("--listen wants HOST:PORT, e.g. 127.0.0.1:7400, not '" + text + "'");
+  std::string host = text.substr(0, colon);
+  if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+  const std::uint64_t port = parseUnsigned(text.substr(colon + 1), "listen");
+  if (port > 65535) throw UsageError("--listen: port " + std::to_string(port) + " is beyond 65535");
+  options.listenHost = host;
+  options.listenPort = static_cast<std::uint16_t>(port);
+}
+
+/// The token in `file`: its bytes without the trailing line end.
+std::string readToken(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error("--token: cannot read " + file);
+  std::ostringstream s;
+  s << in.rdbuf();
+  std::string token = s.str();
+  while (!token.empty() && (token.back() == '\n' || token.back() == '\r')) token.pop_back();
+  if (token.empty()) throw Error("--token: " + file + " is empty");
+  return token;
+}
+
+int runControllerCommand(const CommandContext& c) {
+  if (c.args.positionals.size() > 1) throw UsageError("takes one SCENE at most");
+  ControllerOptions options;
+  if (!c.args.positionals.empty()) options.scene = c.args.positionals[0];
+  options.moving = c.args.values("move");
+  if (!options.scene.empty() && options.moving.empty())
+    throw UsageError("--move NAME is required with a SCENE (the object the controller moves)");
+  if (options.scene.empty() && !options.moving.empty()) throw UsageError("--move wants a SCENE");
+  options.model = sceneModelOptionsFromArgs(c.args, c.console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
+  if (const auto listen = c.args.value("listen")) parseListen(*listen, options);
+  if (const auto token = c.args.value("token")) options.token = readToken(*token);
+  options.device = c.args.value("device").value_or("");
+  if (!options.device.empty() && options.device.rfind("script:", 0) != 0)
+    throw UsageError("--device wants script:FILE, not '" + options.device + "'");
+  if (!options.device.empty() && options.scene.empty()) throw UsageError("--device wants a SCENE");
+  if (c.args.value("duration")) options.durationS = durationFromArgs(c.args, 0.0);
+  options.realtime = !c.args.has("no-realtime");
+  options.json = c.args.has("json");
+  runController(options, c.console, c.out);
+  return kExitOk;
+}
+
+}  // namespace
+
+Command controllerCommand() {
+  Command controller;
+  controller.name = "controller";
+  controller.summary = "The haptic controller: the 1 kHz simulation and its devices, serving front ends over TCP.";
+  controller.usage =
+      "voxhap controller [SCENE --move NAME] [--listen HOST:PORT] [--token FILE] [--device script:FILE]\n"
+      "       [--voxel-size LENGTH] [--point-spacing LENGTH] [--capacity N] [--duration SECONDS]\n"
+      "       [--no-realtime] [--json]";
+  controller.description =
+      "Runs the paper's Haptic Controller (§6): a haptic thread keeps the 1 kHz loop on absolute\n"
+      "1 ms deadlines (devices, dynamics, voxel sampling, forces), under SCHED_FIFO with its\n"
+      "memory locked when the system allows it (it says so when not); after a stall it re-syncs\n"
+      "to the clock instead of running the missed frames back to back. The calling thread\n"
+      "serves front ends over TCP (docs/protocol.md): list objects, grab and release them with\n"
+      "a device, move a handle, set the force layer, stream poses, read statistics, load another\n"
+      "scene, shut down. Without a SCENE it waits for a client to load one.\n\n"
+      "It listens on 127.0.0.1:7400 by default (port 0: any free port); the line 'listening on\n"
+      "HOST:PORT' on stderr says where. Any address beyond loopback needs --token FILE, whose\n"
+      "contents (without the final line end) every client must present in its hello.\n\n"
+      "--device script:FILE grabs the first --move object with a motion script at start, as\n"
+      "`voxhap simulate` plays it; clients can grab objects too. It runs until SIGINT or\n"
+      "SIGTERM, a client's shutdown request, or --duration seconds of wall time, then prints\n"
+      "the haptic period's p50/p99/p99.9/max and overruns (text, or one JSON document with\n"
+      "--json) and exits 0.\n\n"
+      "Examples:\n"
+      "  voxhap controller landing-gear --move actuator --device script:assets/scripts/actuator-extract.txt\n"
+      "  voxhap controller --listen 127.0.0.1:0      # waits for a client's load_scene\n"
+      "  voxhap controller ball-and-socket --move ball --voxel-size 0.5mm --listen 127.0.0.1:0\n"
+      "  voxhap controller ball-and-socket --move ball --listen 192.168.1.20:7400 --token ~/.voxhap-token";
+  controller.options = {
+      {"move", 0, "NAME", "an object or group the controller moves (repeatable)"},
+      {"listen", 0, "HOST:PORT", "where front ends connect (default 127.0.0.1:7400)"},
+      {"token", 0, "FILE", "a token clients must present; required beyond loopback"},
+      {"device", 0, "script:FILE", "grab the first moved object with a motion script at start"},
+      {"voxel-size", 0, "LENGTH", "voxel size of the static scene (default 2.5mm, as the demo)"},
+      {"point-spacing", 0, "LENGTH", "point spacing of the moving objects (default 1mm)"},
+      kCapacityOption,
+      kVoxelMemoryOption,
+      kDeviceProfileOption,
+      {"duration", 0, "SECONDS", "stop after this much wall time (default: run until told)"},
+      {"no-realtime", 0, "", "do not try SCHED_FIFO and mlockall"},
+      kCacheDirOption,
+      kNoCacheOption,
+      {"json", 0, "", "print the summary as one JSON document on stdout"}};
+  controller.run = runControllerCommand;
+  return controller;
+}
+
+}  // namespace voxhap::cli

@@ -1,0 +1,213 @@
+#include "app/controller/controller_run.h"
+
+#include <chrono>
+#include <csignal>
+#include <iomanip>
+
+#include <asio/io_context.hpp>
+#include <asio/post.hpp>
+#include <asio/signal_set.hpp>
+#include <asio/steady_timer.hpp>
+#include <nlohmann/json.hpp>
+
+#include "app/controller/controller_service.h"
+#include "app/scene_source.h"
+#include "haptics/core/error.h"
+#include "haptics/scene/object_selection.h"
+
+namespace voxhap::cli {
+namespace {
+
+using controller::ControllerService;
+using controller::HapticLoop;
+
+/// How often the comms thread looks after the haptic thread (retired devices, a stop).
+constexpr auto kHousekeepingPeriod = std::chrono::milliseconds(50);
+/// How long a stopping controller waits for its clients to take their last messages.
+constexpr auto kLastWrites = std::chrono::seconds(2);
+
+std::string realtimeLine(const RealtimeStatus& status) {
+  std::string line = status.fifo.ok ? "haptic thread under SCHED_FIFO priority " + std::to_string(status.fifoPriority)
+                                    : "haptic thread without SCHED_FIFO (" + status.fifo.error + ")";
+  line += status.memoryLock.ok ? ", memory locked" : ", memory not locked (" + status.memoryLock.error + ")";
+  if (!status.fifo.ok) line += "; periods may stretch when the machine is busy";
+  return line;
+}
+
+double us(std::int64_t ns) { return static_cast<double>(ns) * 1e-3; }
+
+nlohmann::ordered_json summaryJson(const PeriodSummary& s) {
+  return {{"count", s.count},       {"overruns", s.overruns}, {"p50_us", us(s.p50Ns)}, {"p99_us", us(s.p99Ns)},
+          {"p999_us", us(s.p999Ns)}, {"max_us", us(s.maxNs)}, {"mean_us", s.meanNs * 1e-3}};
+}
+
+void printSummary(std::ostream& out, const char* label, const PeriodSummary& s) {
+  out << std::left << std::setw(17) << label << std::right << std::fixed << std::setprecision(1) << "p50 "
+      << us(s.p50Ns) << " µs, p99 " << us(s.p99Ns) << " µs, p99.9 " << us(s.p999Ns) << " µs, max " << us(s.maxNs)
+      << " µs; " << s.overruns << " over " << (label[0] == 'p' ? "1.5 ms" : "1 ms") << "\n";
+}
+
+/// Loads `sceneName`, builds it with `moving` moving and starts its haptic loop.
+std::unique_ptr<controller::ControllerSession> loadSession(const std::string& sceneName,
+                                                           const std::vector<std::string>& moving,
+                                                           const SceneModelOptions& model,
+                                                           controller::HapticLoopOptions loopOptions, Console& console,
+                                                           const ProgressFn& progress) {
+  if (moving.empty()) throw Error("nothing to move in " + sceneName + ": name an object or group");
+  auto session = std::make_unique<controller::ControllerSession>();
+  const Scene scene = loadScene(sceneName, kDefaultSeed, console);
+  session->sceneName = scene.sourceName;
+  for (const SceneObject* o : selectObjects(scene, moving).rest) session->staticObjects.push_back(o->name);
+  session->built = std::make_unique<BuiltScene>(buildScene(scene, moving, model, progress));
+  const SimModel& m = session->built->model;
+  loopOptions.periodNs = std::llround(m.dtS * 1e9);
+  session->loop = std::make_unique<HapticLoop>(m, makeSimState(m), session->built->staticPager, loopOptions);
+  session->loop->start();
+  return session;
+}
+
+}  // namespace
+
+void runController(const ControllerOptions& options, Console& console, std::ostream& out) {
+  asio::error_code ec;
+  const asio::ip::address address = asio::ip::make_address(options.listenHost, ec);
+  if (ec) throw Error("--listen: '" + options.listenHost + "' is not an IP address");
+  if (!address.is_loopback() && options.token.empty())
+    throw Error("--listen " + options.listenHost + " is beyond loopback: give a --token FILE that clients must present");
+
+  controller::HapticLoopOptions loopOptions;
+  loopOptions.realtime = options.realtime;
+  // what a LoadScene asks for, with this controller's options for the rest
+  const controller::SessionLoader loader = [&options, &console, loopOptions](const net::pb::LoadScene& request,
+                                                                            const ProgressFn& progress) {
+    SceneModelOptions model = options.model;
+    if (request.voxel_size_m() > 0.0) model.staticVoxelSizeM = request.voxel_size_m();
+    model.pointSpacingM = request.point_spacing_m() > 0.0 ? request.point_spacing_m() : model.staticVoxelSizeM;
+    return loadSession(request.scene(), {request.move().begin(), request.move().end()}, model, loopOptions,
+                       console, progress);
+  };
+  std::unique_ptr<controller::ControllerSession> initial;
+  if (!options.scene.empty())
+    initial = loadSession(options.scene, options.moving, options.model, loopOptions, console,
+                          console.progress("preparing voxels"));
+
+  asio::io_context io;
+  asio::signal_set signals(io, SIGINT, SIGTERM);
+  asio::steady_timer housekeeping(io);
+  asio::steady_timer lastWrites(io);
+  bool stopping = false;
+  std::string stopReason;
+  std::unique_ptr<net::FrontendServer> server;
+  std::function<void(std::chrono::steady_clock::time_point)> awaitClients = [&](auto giveUpAt) {
+    if (server->clients() == 0 || std::chrono::steady_clock::now() >= giveUpAt) {
+      io.stop();
+      return;
+    }
+    lastWrites.expires_after(std::chrono::milliseconds(10));
+    lastWrites.async_wait([&, giveUpAt](const asio::error_code&) { awaitClients(giveUpAt); });
+  };
+  // ends io.run() once every connection has written what it was sent (a reply to Shutdown),
+  // or after kLastWritesS for a client that does not read
+  auto stop = [&](const std::string& reason) {
+    if (stopping) return;
+    stopping = true;
+    stopReason = reason;
+    asio::post(io, [&] {
+      if (server) server->close();
+      signals.cancel();
+      housekeeping.cancel();
+      awaitClients(std::chrono::steady_clock::now() + kLastWrites);
+    });
+  };
+  const auto log = [&console](const std::string& line) { console.info(line); };
+  ControllerService service(
+      io, std::move(initial), loader, [&] { stop("a client asked it to shut down"); }, log);
+  net::FrontendServerOptions serverOptions;
+  serverOptions.token = options.token;
+  try {
+    server = std::make_unique<net::FrontendServer>(io, asio::ip::tcp::endpoint(address, options.listenPort), service,
+                                                   serverOptions, log);
+  } catch (const std::system_error& e) {
+    throw Error("cannot listen on " + options.listenHost + ":" + std::to_string(options.listenPort) + ": " +
+                e.code().message());
+  }
+  service.setSender([&server](std::uint64_t client, const net::pb::ServerMessage& message) {
+    return server->send(client, message);
+  });
+
+  if (!options.device.empty()) {
+    net::pb::ClientMessage grab;
+    grab.mutable_grab()->set_object(service.session()->built->model.objects[0].name);
+    grab.mutable_grab()->set_device(options.device);
+    net::pb::ServerMessage reply;
+    service.handle(0, grab, reply);
+    if (reply.has_error()) throw Error("--device " + options.device + ": " + reply.error().message());
+  }
+
+  if (const controller::ControllerSession* session = service.session())
+    console.info(realtimeLine(session->loop->realtime()));
+  const asio::ip::tcp::endpoint listening = server->endpoint();
+  console.info("listening on " + listening.address().to_string() + ":" + std::to_string(listening.port()));
+
+  signals.async_wait([&](const asio::error_code& e, int signal) {
+    if (!e) stop(signal == SIGINT ? "SIGINT" : "SIGTERM");
+  });
+  const auto started = std::chrono::steady_clock::now();
+  std::function<void()> keepHouse = [&] {
+    service.collectRetired();
+    if (service.session() && service.session()->loop->latest().stopped)
+      stop("the haptic thread stopped (paging could not keep up)");
+    if (options.durationS && secondsSince(started) >= *options.durationS) stop("the duration ran out");
+    housekeeping.expires_after(kHousekeepingPeriod);
+    housekeeping.async_wait([&](const asio::error_code& e) {
+      if (!e && !stopping) keepHouse();
+    });
+  };
+  keepHouse();
+  io.run();
+
+  service.stopLoop();
+  const controller::ControllerSession* session = service.session();
+  const controller::FrameSnapshot last = session ? session->loop->latest() : controller::FrameSnapshot{};
+  const PeriodSummary period = session ? session->loop->periodStats().summary() : PeriodSummary{};
+  const PeriodSummary compute = session ? session->loop->computeStats().summary() : PeriodSummary{};
+  const bool fifo = session && session->loop->realtime().fifo.ok;
+  const bool locked = session && session->loop->realtime().memoryLock.ok;
+  const std::string sceneName = session ? session->sceneName : std::string();
+  const net::FrontendServerCounters& c = server->counters();
+  console.info("stopped: " + stopReason);
+  if (options.json) {
+    nlohmann::ordered_json j = {{"scene", sceneName},
+                                {"stopped_by", stopReason},
+                                {"wall_s", secondsSince(started)},
+                                {"frames", last.frame},
+                                {"simulated_s", last.timeS},
+                                {"sched_fifo", fifo},
+                                {"memory_locked", locked},
+                                {"period", summaryJson(period)},
+                                {"compute", summaryJson(compute)},
+                                {"resyncs", last.resyncs},
+                                {"skipped_periods", last.skippedPeriods},
+                                {"missed_deadlines", last.missedDeadlines},
+                                {"dropped_commands", service.droppedCommands()},
+                                {"connections", c.connections},
+                                {"refused_connections", c.refused},
+                                {"protocol_violations", c.violations},
+                                {"requests", c.requests},
+                                {"updates_sent", c.updatesSent},
+                                {"updates_skipped", c.updatesSkipped}};
+    out << j.dump(2) << "\n";
+    return;
+  }
+  out << "scene            " << sceneName << "\nstopped by       " << stopReason << " after "
+      << std::fixed << std::setprecision(1) << secondsSince(started) << " s\nframes           " << last.frame
+      << " (" << last.timeS << " s simulated)\n";
+  printSummary(out, "period", period);
+  printSummary(out, "compute", compute);
+  out << "re-syncs         " << last.resyncs << " (" << last.skippedPeriods << " periods skipped)\n"
+      << "missed deadlines " << last.missedDeadlines << "\nclients          " << c.connections << " ("
+      << c.violations << " closed for protocol violations, " << c.refused << " refused), " << c.requests
+      << " requests\n";
+}
+
+}  // namespace voxhap::cli

@@ -1,0 +1,36 @@
+#pragma once
+/// `voxhap controller`: the haptic controller as a process (DESIGN §7, paper §6). It
+/// builds the scene, starts the 1 kHz haptic thread, serves front ends over TCP on the
+/// calling thread (the comms thread) until SIGINT, SIGTERM, a Shutdown request or the
+/// asked duration, then stops the haptic thread and reports its period statistics.
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "app/cli/console.h"
+#include "haptics/sim/scene_model.h"
+
+namespace voxhap::cli {
+
+struct ControllerOptions {
+  std::string scene;
+  std::vector<std::string> moving;  ///< objects or groups the controller moves
+  SceneModelOptions model;
+  std::string listenHost = "127.0.0.1";
+  std::uint16_t listenPort = 7400;  ///< 0: any free port (printed)
+  std::string token;                ///< required of clients when not empty
+  std::string device;               ///< "script:FILE" grabs moving[0] at start; empty: none
+  std::optional<double> durationS;  ///< stop after this much wall time
+  bool realtime = true;             ///< try mlockall and SCHED_FIFO
+  bool json = false;
+};
+
+/// Runs the controller; returns when it has stopped, after printing its summary on `out`
+/// (text, or one JSON document). Notes, the listening address and the reasons connections
+/// were closed go to `console`. Throws voxhap::Error for a scene, device or address it
+/// cannot use.
+void runController(const ControllerOptions& options, Console& console, std::ostream& out);
+
+}  // namespace voxhap::cli

@@ -1,0 +1,367 @@
+#include "app/controller/controller_service.h"
+
+#include <cmath>
+
+#include "haptics/core/error.h"
+#include "haptics/device/motion_script.h"
+
+namespace voxhap::controller {
+namespace {
+
+namespace pb = net::pb;
+
+void fail(pb::ServerMessage& reply, const std::string& message, const std::string& field = {}) {
+  reply.mutable_error()->set_message(message);
+  reply.mutable_error()->set_field(field);
+}
+
+void toProto(const Pose& pose, pb::Pose& out) {
+  out.mutable_position_m()->set_x(pose.position.x);
+  out.mutable_position_m()->set_y(pose.position.y);
+  out.mutable_position_m()->set_z(pose.position.z);
+  out.mutable_orientation()->set_w(pose.orientation.w);
+  out.mutable_orientation()->set_x(pose.orientation.x);
+  out.mutable_orientation()->set_y(pose.orientation.y);
+  out.mutable_orientation()->set_z(pose.orientation.z);
+}
+
+double seconds(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
+
+}  // namespace
+
+ClientHandleDevice::ClientHandleDevice(const Pose& initialWorld, const DeviceLimits& limits)
+    : pose_(initialWorld), limits_(limits) {}
+
+Pose ClientHandleDevice::handlePose(double) noexcept {
+  mailbox_.readNewer(version_, pose_);
+  return pose_;
+}
+
+ControllerService::ControllerService(asio::io_context& io, std::unique_ptr<ControllerSession> session,
+                                     SessionLoader loader, std::function<void()> shutdown, LogFn log)
+    : io_(io), loader_(std::move(loader)), shutdown_(std::move(shutdown)), log_(std::move(log)) {
+  replaceSession(std::move(session));
+}
+
+ControllerService::~ControllerService() {
+  cancelLoad_ = true;
+  if (loadThread_.joinable()) loadThread_.join();
+  stopLoop();
+}
+
+void ControllerService::hello(pb::HelloReply& reply) {
+  reply.set_controller_version(std::string("voxhap ") + VOXHAP_VERSION);
+  reply.set_scene(session_ ? session_->sceneName : std::string());
+  reply.set_frame_period_s(session_ ? session_->built->model.dtS : 1e-3);
+}
+
+void ControllerService::stopLoop() {
+  if (!session_) return;
+  session_->loop->stop();
+  collectRetired();
+}
+
+void ControllerService::replaceSession(std::unique_ptr<ControllerSession> session) {
+  stopLoop();
+  devices_.clear();  // every device is retired once the old loop has stopped
+  session_ = std::move(session);
+  const std::size_t n = session_ ? session_->built->model.objects.size() : 0;
+  heldBy_.assign(n, std::string());
+  heldByClient_.assign(n, 0);
+  clientHandles_.assign(n, nullptr);
+}
+
+void ControllerService::collectRetired() {
+  if (!session_) return;
+  while (HapticDevice* device = session_->loop->takeRetired()) devices_.erase(device);
+}
+
+void ControllerService::handle(std::uint64_t client, const pb::ClientMessage& request, pb::ServerMessage& reply) {
+  collectRetired();
+  switch (request.request_case()) {
+  case pb::ClientMessage::kListObjects:
+    listObjects(*reply.mutable_object_list());
+    return;
+  case pb::ClientMessage::kLoadScene:
+    load(client, request.id(), request.load_scene(), reply);
+    return;
+  case pb::ClientMessage::kGrab:
+    grab(client, request.grab(), reply);
+    return;
+  case pb::ClientMessage::kRelease:
+    release(request.release().object(), reply);
+    return;
+  case pb::ClientMessage::kSetParameters:
+    setParameters(request.set_parameters(), reply);
+    return;
+  case pb::ClientMessage::kMoveHandle:
+    moveHandle(client, request.move_handle(), reply);
+    return;
+  case pb::ClientMessage::kGetStatistics:
+    statistics(*reply.mutable_statistics());
+    return;
+  case pb::ClientMessage::kShutdown:
+    reply.mutable_done();
+    log_("shutdown asked by client " + std::to_string(client));
+    shutdown_();
+    return;
+  default:
+    fail(reply, "this controller does not serve that request yet");
+    return;
+  }
+}
+
+void ControllerService::listObjects(pb::ObjectList& list) const {
+  if (!session_) return;
+  const SimModel& model = session_->built->model;
+  for (std::size_t i = 0; i < model.objects.size(); ++i) {
+    pb::ObjectInfo& o = *list.add_objects();
+    o.set_index(static_cast<std::uint32_t>(i));
+    o.set_name(model.objects[i].name);
+    o.set_moving(true);
+    o.set_mass_kg(model.objects[i].body.massKg);
+    o.set_held_by(heldBy_[i]);
+    o.set_points(static_cast<std::uint32_t>(model.objects[i].shell.size()));
+  }
+  for (std::size_t i = 0; i < session_->staticObjects.size(); ++i) {
+    pb::ObjectInfo& o = *list.add_objects();
+    o.set_index(static_cast<std::uint32_t>(model.objects.size() + i));
+    o.set_name(session_->staticObjects[i]);
+  }
+}
+
+int ControllerService::movingObject(const std::string& name, pb::ServerMessage& reply) const {
+  if (!session_) {
+    fail(reply, "no scene is loaded (load_scene first)", "object");
+    return -1;
+  }
+  const SimModel& model = session_->built->model;
+  for (std::size_t i = 0; i < model.objects.size(); ++i) {
+    if (model.objects[i].name == name) return static_cast<int>(i);
+  }
+  std::string names;
+  for (const MovingObjectModel& o : model.objects) names += (names.empty() ? "" : ", ") + o.name;
+  fail(reply, "no moving object '" + name + "' (moving: " + names + ")", "object");
+  return -1;
+}
+
+bool ControllerService::post(const LoopCommand& command, pb::ServerMessage& reply) {
+  if (session_->loop->post(command)) return true;
+  ++droppedCommands_;
+  fail(reply, "the haptic thread's command queue is full; try again");
+  return false;
+}
+
+void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::ServerMessage& reply) {
+  const int object = movingObject(request.object(), reply);
+  if (object < 0) return;
+  const auto i = static_cast<std::size_t>(object);
+  const std::string& device = request.device();
+  std::unique_ptr<HapticDevice> created;
+  ClientHandleDevice* clientHandle = nullptr;
+  if (device.rfind("script:", 0) == 0) {
+    try {
+      created = std::make_unique<ScriptedDevice>(loadMotionScript(device.substr(7)), session_->built->model.deviceLimits);
+    } catch (const Error& e) {
+      fail(reply, e.what(), "device");
+      return;
+    }
+  } else if (device == "client") {
+    auto handle = std::make_unique<ClientHandleDevice>(session_->loop->latest().objects[i].pose,
+                                                       session_->built->model.deviceLimits);
+    clientHandle = handle.get();
+    created = std::move(handle);
+  } else {
+    fail(reply, "unknown device '" + device + "' (script:PATH or client)", "device");
+    return;
+  }
+  LoopCommand command;
+  command.kind = LoopCommand::Kind::Grab;
+  command.object = static_cast<std::uint32_t>(i);
+  command.device = created.get();
+  if (!post(command, reply)) return;
+  devices_.emplace(created.get(), std::move(created));
+  heldBy_[i] = device;
+  heldByClient_[i] = clientHandle ? client : 0;
+  clientHandles_[i] = clientHandle;
+  reply.mutable_done();
+}
+
+void ControllerService::release(const std::string& name, pb::ServerMessage& reply) {
+  const int object = movingObject(name, reply);
+  if (object < 0) return;
+  LoopCommand command;
+  command.kind = LoopCommand::Kind::Release;
+  command.object = static_cast<std::uint32_t>(object);
+  if (!post(command, reply)) return;
+  heldBy_[static_cast<std::size_t>(object)].clear();
+  heldByClient_[static_cast<std::size_t>(object)] = 0;
+  clientHandles_[static_cast<std::size_t>(object)] = nullptr;
+  reply.mutable_done();
+}
+
+void ControllerService::setParameters(const pb::SetParameters& request, pb::ServerMessage& reply) {
+  if (!session_) {
+    fail(reply, "no scene is loaded (load_scene first)");
+    return;
+  }
+  if (request.has_force_layer()) {
+    const std::uint32_t value = request.force_layer();
+    if (value > 255 || !session_->built->model.forceLayerInRange(static_cast<std::uint8_t>(value))) {
+      fail(reply, "force_layer " + std::to_string(value) + " is not a value every pair's voxmap renders",
+           "force_layer");
+      return;
+    }
+    LoopCommand command;
+    command.kind = LoopCommand::Kind::SetForceLayer;
+    command.value = value;
+    if (!post(command, reply)) return;
+  }
+  reply.mutable_done();
+}
+
+void ControllerService::moveHandle(std::uint64_t client, const pb::MoveHandle& request, pb::ServerMessage& reply) {
+  const int object = movingObject(request.object(), reply);
+  if (object < 0) return;
+  const auto i = static_cast<std::size_t>(object);
+  if (heldByClient_[i] != client || clientHandles_[i] == nullptr) {
+    fail(reply, "'" + request.object() + "' is not held by this client's handle (grab it with device 'client')",
+         "object");
+    return;
+  }
+  const pb::Pose& p = request.handle();
+  Pose pose;
+  pose.position = {p.position_m().x(), p.position_m().y(), p.position_m().z()};
+  pose.orientation = glm::dquat(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
+  const double norm = glm::length(pose.orientation);
+  if (!isFinite(pose) || std::abs(norm - 1.0) > 1e-6) {
+    fail(reply, "the handle pose must be finite with a unit quaternion", "handle");
+    return;
+  }
+  clientHandles_[i]->move(pose);
+  reply.mutable_done();
+}
+
+void ControllerService::frameUpdate(pb::FrameUpdate& update) {
+  if (!session_) return;
+  const FrameSnapshot& s = session_->loop->latest();
+  update.set_frame(s.frame);
+  update.set_time_s(s.timeS);
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    const ObjectSnapshot& o = s.objects[i];
+    pb::ObjectState& out = *update.add_objects();
+    out.set_index(static_cast<std::uint32_t>(i));
+    toProto(o.pose, *out.mutable_pose());
+    if (o.held) toProto(o.handle, *out.mutable_handle());
+    out.mutable_force_n()->set_x(o.forceWorld.x);
+    out.mutable_force_n()->set_y(o.forceWorld.y);
+    out.mutable_force_n()->set_z(o.forceWorld.z);
+    out.set_contacts(o.contacts);
+    out.set_travel_share(o.travelShare);
+  }
+}
+
+void ControllerService::disconnected(std::uint64_t client) {
+  for (std::size_t i = 0; i < heldByClient_.size(); ++i) {
+    if (heldByClient_[i] != client) continue;
+    // its handle is gone: the object stays where it is, free
+    pb::ServerMessage ignored;
+    release(session_->built->model.objects[i].name, ignored);
+  }
+}
+
+void ControllerService::statistics(pb::Statistics& out) const {
+  out.set_dropped_commands(droppedCommands_);
+  if (!session_) return;
+  HapticLoop& loop = *session_->loop;
+  const FrameSnapshot& s = loop.latest();
+  out.set_frames(s.frame);
+  out.set_overruns(s.period.overruns);
+  out.set_period_p50_s(seconds(s.period.p50Ns));
+  out.set_period_p99_s(seconds(s.period.p99Ns));
+  out.set_period_p999_s(seconds(s.period.p999Ns));
+  out.set_period_max_s(seconds(s.period.maxNs));
+  out.set_compute_p50_s(seconds(s.compute.p50Ns));
+  out.set_compute_p99_s(seconds(s.compute.p99Ns));
+  out.set_compute_max_s(seconds(s.compute.maxNs));
+  out.set_missed_deadlines(s.missedDeadlines);
+  out.set_resyncs(s.resyncs);
+  out.set_realtime(loop.realtime().fifo.ok);
+  out.set_memory_locked(loop.realtime().memoryLock.ok);
+}
+
+void ControllerService::load(std::uint64_t client, std::uint64_t id, const pb::LoadScene& request,
+                             pb::ServerMessage& reply) {
+  if (loading_) {
+    fail(reply, "a scene is loading already; wait for its reply");
+    return;
+  }
+  if (request.scene().empty()) {
+    fail(reply, "load_scene wants a scene (a .gltf/.glb path or a built-in name)", "scene");
+    return;
+  }
+  if (request.move_size() == 0) {
+    fail(reply, "load_scene wants at least one object to move", "move");
+    return;
+  }
+  for (const auto& [field, value] : {std::pair{"voxel_size_m", request.voxel_size_m()},
+                                     std::pair{"point_spacing_m", request.point_spacing_m()}}) {
+    if (!(value >= 0.0 && value <= 1.0)) {
+      fail(reply, std::string(field) + " wants 0 (the default) or a length up to 1 m", field);
+      return;
+    }
+  }
+  if (loadThread_.joinable()) loadThread_.join();
+  loading_ = true;
+  log_("client " + std::to_string(client) + " loads " + request.scene());
+  loadThread_ = std::thread([this, client, id, request] {
+    auto lastPercent = std::make_shared<int>(-1);
+    const ProgressFn progress = [this, client, id, lastPercent](double fraction) {
+      if (cancelLoad_) throw Error("the load was cancelled");
+      const int percent = static_cast<int>(fraction * 100.0);
+      if (percent == *lastPercent) return;
+      *lastPercent = percent;
+      asio::post(io_, [this, client, id, fraction] {
+        pb::ServerMessage event;
+        pb::LoadProgress& p = *event.mutable_load_progress();
+        p.set_request_id(id);
+        p.set_stage("preparing voxels");
+        p.set_fraction(fraction);
+        if (send_) send_(client, event);
+      });
+    };
+    std::unique_ptr<ControllerSession> loaded;
+    std::string error;
+    try {
+      loaded = loader_(request, progress);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    auto result = std::make_shared<std::unique_ptr<ControllerSession>>(std::move(loaded));
+    asio::post(io_, [this, client, id, result, error] { finishLoad(client, id, std::move(*result), error); });
+  });
+  // the reply follows when the load is done (finishLoad)
+}
+
+void ControllerService::finishLoad(std::uint64_t client, std::uint64_t id, std::unique_ptr<ControllerSession> loaded,
+                                   const std::string& error) {
+  loading_ = false;
+  pb::ServerMessage reply;
+  reply.set_id(id);
+  if (!loaded) {
+    log_("load for client " + std::to_string(client) + " failed: " + error);
+    fail(reply, error, "scene");
+  } else {
+    log_("now simulating " + loaded->sceneName);
+    pb::ServerMessage done;
+    done.mutable_load_progress()->set_request_id(id);
+    done.mutable_load_progress()->set_stage("loaded");
+    done.mutable_load_progress()->set_fraction(1.0);
+    if (send_) send_(client, done);
+    replaceSession(std::move(loaded));
+    listObjects(*reply.mutable_object_list());
+  }
+  if (send_) send_(client, reply);
+}
+
+}  // namespace voxhap::controller

@@ -1,0 +1,127 @@
+#pragma once
+/// What the haptic controller answers to front ends (docs/protocol.md): scene loads, the
+/// objects, grabs and releases, parameters, frame updates and statistics, on top of a
+/// running HapticLoop. Runs on the comms thread only (net::FrontendHandler), except the
+/// loader, which runs on a worker thread of its own; it talks to the haptic thread only
+/// through the loop's hand-overs, and owns every device it creates until the haptic
+/// thread hands it back.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <asio/io_context.hpp>
+
+#include "app/controller/haptic_loop.h"
+#include "haptics/core/progress.h"
+#include "haptics/sim/scene_model.h"
+#include "haptics/runtime/latest_value.h"
+#include "net/frontend/frontend_server.h"
+
+namespace voxhap::controller {
+
+/// A handle moved by a front end (MoveHandle, e.g. the mouse as a 2-DOF device): the
+/// newest pose the comms thread received, read by the haptic thread through a mailbox.
+/// Its velocity is zero, so the coupling damps the object's motion as a viscosity.
+class ClientHandleDevice final : public HapticDevice {
+public:
+  /// Starts at `initialWorld`, rendering within `limits`.
+  ClientHandleDevice(const Pose& initialWorld, const DeviceLimits& limits);
+  /// Comms thread: the new handle pose.
+  void move(const Pose& handleWorld) noexcept { mailbox_.publish(handleWorld); }
+  Pose handlePose(double tS) noexcept override;
+  HandleVelocity handleVelocity(double) noexcept override { return {}; }
+  void setFeedback(const CouplingWrench&) noexcept override {}
+  const DeviceLimits& limits() const noexcept override { return limits_; }
+
+private:
+  LatestValue<Pose> mailbox_;
+  std::uint64_t version_ = 0;
+  Pose pose_;
+  DeviceLimits limits_;
+};
+
+/// A scene the controller simulates: the built model and the haptic loop running it.
+struct ControllerSession {
+  std::string sceneName;                   ///< as the scene source names it
+  std::vector<std::string> staticObjects;  ///< names of the static parts
+  std::unique_ptr<BuiltScene> built;       ///< the model the loop reads (a stable address)
+  std::unique_ptr<HapticLoop> loop;        ///< started
+};
+
+/// Builds and starts a session for a LoadScene request, calling `progress` as it goes
+/// (it throws to cancel). Runs on a worker thread; throws voxhap::Error for a scene it
+/// cannot load.
+using SessionLoader =
+    std::function<std::unique_ptr<ControllerSession>(const net::pb::LoadScene& request, const ProgressFn& progress)>;
+
+class ControllerService final : public net::FrontendHandler {
+public:
+  using LogFn = std::function<void(const std::string&)>;
+  using SendFn = std::function<bool(std::uint64_t client, const net::pb::ServerMessage& message)>;
+
+  /// Serves `session` (null: none until a client loads one) and loads others with `loader`
+  /// on a worker thread, whose results come back through `io`. `shutdown` is called on a
+  /// Shutdown request after its reply is queued.
+  ControllerService(asio::io_context& io, std::unique_ptr<ControllerSession> session, SessionLoader loader,
+                    std::function<void()> shutdown, LogFn log);
+  /// Cancels a load in progress and waits for its thread; stops the loop.
+  ~ControllerService() override;
+
+  /// How deferred replies and progress events reach a client (FrontendServer::send).
+  void setSender(SendFn send) { send_ = std::move(send); }
+
+  void hello(net::pb::HelloReply& reply) override;
+  void handle(std::uint64_t client, const net::pb::ClientMessage& request, net::pb::ServerMessage& reply) override;
+  void frameUpdate(net::pb::FrameUpdate& update) override;
+  void disconnected(std::uint64_t client) override;
+
+  /// Deletes the devices the haptic thread has let go. Called by every request; call it
+  /// after the loop has stopped too.
+  void collectRetired();
+  /// Stops the haptic loop (for the summary; requests after it find no scene).
+  void stopLoop();
+  /// The session being simulated, or null.
+  const ControllerSession* session() const { return session_.get(); }
+  /// Commands the haptic thread's queue refused (it was full).
+  std::uint64_t droppedCommands() const { return droppedCommands_; }
+  /// Statistics as the protocol sends them (also for the controller's summary).
+  void statistics(net::pb::Statistics& out) const;
+
+private:
+  /// The index of moving object `name`, or -1 after filling `reply` with an Error.
+  int movingObject(const std::string& name, net::pb::ServerMessage& reply) const;
+  void listObjects(net::pb::ObjectList& list) const;
+  void grab(std::uint64_t client, const net::pb::Grab& request, net::pb::ServerMessage& reply);
+  void release(const std::string& name, net::pb::ServerMessage& reply);
+  void setParameters(const net::pb::SetParameters& request, net::pb::ServerMessage& reply);
+  void moveHandle(std::uint64_t client, const net::pb::MoveHandle& request, net::pb::ServerMessage& reply);
+  void load(std::uint64_t client, std::uint64_t id, const net::pb::LoadScene& request, net::pb::ServerMessage& reply);
+  void finishLoad(std::uint64_t client, std::uint64_t id, std::unique_ptr<ControllerSession> loaded,
+                  const std::string& error);
+  /// Makes `session` (may be null) the one served, with no object held.
+  void replaceSession(std::unique_ptr<ControllerSession> session);
+  bool post(const LoopCommand& command, net::pb::ServerMessage& reply);
+
+  asio::io_context& io_;
+  std::unique_ptr<ControllerSession> session_;
+  SessionLoader loader_;
+  std::function<void()> shutdown_;
+  LogFn log_;
+  SendFn send_;
+  std::map<const HapticDevice*, std::unique_ptr<HapticDevice>> devices_;  ///< every device not yet retired
+  std::vector<std::string> heldBy_;                 ///< per moving object, as Grab named it; empty: free
+  std::vector<std::uint64_t> heldByClient_;         ///< per moving object, the client whose handle it is, 0: none
+  std::vector<ClientHandleDevice*> clientHandles_;  ///< per moving object, while heldByClient_
+  std::uint64_t droppedCommands_ = 0;
+  std::thread loadThread_;
+  bool loading_ = false;
+  std::atomic<bool> cancelLoad_{false};
+};
+
+}  // namespace voxhap::controller

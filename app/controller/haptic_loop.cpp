@@ -1,0 +1,135 @@
+#include "app/controller/haptic_loop.h"
+
+#include <bit>
+#include <chrono>
+#include <future>
+
+#include "haptics/runtime/frame_clock.h"
+
+namespace voxhap::controller {
+namespace {
+
+FrameSnapshot emptySnapshot(const SimModel& model) {
+  FrameSnapshot s;
+  s.objects.resize(model.objects.size());
+  return s;
+}
+
+}  // namespace
+
+HapticLoop::HapticLoop(const SimModel& model, SimState initial, std::shared_ptr<VoxelPager> staticPager,
+                       HapticLoopOptions options)
+    : model_(model), options_(options), state_(std::move(initial)),
+      workspace_(makeSimWorkspace(model, state_, std::move(staticPager))), outputs_(makeFrameOutputs(model)),
+      grabbed_(model.objects.size()), devices_(model.objects.size(), nullptr), handles_(model.objects.size()),
+      commands_(options.commandCapacity),
+      retired_(std::bit_ceil(options.commandCapacity + model.objects.size())),
+      snapshots_(emptySnapshot(model)), period_(options.periodNs * 3 / 2), compute_(options.periodNs) {}
+
+HapticLoop::~HapticLoop() { stop(); }
+
+void HapticLoop::start() {
+  std::promise<void> ready;
+  std::future<void> started = ready.get_future();
+  thread_ = std::thread([this, &ready] {
+    if (options_.realtime) realtime_ = requestRealtime(options_.fifoPriority);
+    ready.set_value();
+    run();
+  });
+  started.wait();
+}
+
+void HapticLoop::stop() {
+  if (!thread_.joinable()) return;
+  stopRequested_.store(true, std::memory_order_relaxed);
+  thread_.join();
+  for (std::size_t i = 0; i < devices_.size(); ++i) retire(i);
+}
+
+bool HapticLoop::post(const LoopCommand& command) noexcept { return commands_.tryPush(command); }
+
+HapticDevice* HapticLoop::takeRetired() noexcept {
+  HapticDevice* device = nullptr;
+  return retired_.tryPop(device) ? device : nullptr;
+}
+
+const FrameSnapshot& HapticLoop::latest() noexcept {
+  snapshots_.update();
+  return snapshots_.readBuffer();
+}
+
+void HapticLoop::retire(std::size_t object) noexcept {
+  if (devices_[object] == nullptr) return;
+  // the queue has room for every command that can retire one and every object
+  [[maybe_unused]] const bool queued = retired_.tryPush(grabbed_[object].device);
+  grabbed_[object].device = nullptr;
+  devices_[object] = nullptr;
+}
+
+void HapticLoop::apply(const LoopCommand& command) noexcept {
+  if (command.kind == LoopCommand::Kind::SetForceLayer) {
+    setForceLayer(model_, state_, workspace_, command.value);
+    return;
+  }
+  if (command.object >= devices_.size()) return;
+  retire(command.object);
+  if (command.kind == LoopCommand::Kind::Grab && command.device != nullptr) {
+    grabbed_[command.object].device = command.device;
+    grabbed_[command.object].startS = state_.timeS;
+    devices_[command.object] = &grabbed_[command.object];
+  }
+}
+
+void HapticLoop::publish(FrameStatus status, std::uint64_t frame) noexcept {
+  FrameSnapshot& s = snapshots_.writeBuffer();
+  s.frame = frame;
+  s.timeS = state_.timeS;
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    ObjectSnapshot& o = s.objects[i];
+    const ObjectFrame& f = outputs_.objects[i];
+    o.pose = objectPose(model_, state_, i);
+    o.held = devices_[i] != nullptr;
+    o.handle = o.held ? handles_[i].poseWorld : o.pose;
+    o.forceWorld = f.contactForceWorld;
+    o.contacts = f.contacts;
+    o.travelShare = outputs_.coherence.travelScale;
+  }
+  s.forceLayer = state_.forceLayer;
+  s.status = status;
+  s.stopped = (status & kFrameStopped) != 0;
+  if (frame % kSummaryFrames == 0 || s.stopped) {
+    periodSummary_ = period_.summary();
+    computeSummary_ = compute_.summary();
+  }
+  s.period = periodSummary_;
+  s.compute = computeSummary_;
+  s.resyncs = resyncs_;
+  s.skippedPeriods = skippedPeriods_;
+  s.missedDeadlines = workspace_.counters.missedDeadlines;
+  snapshots_.publish();
+}
+
+void HapticLoop::run() noexcept {
+  FrameClock clock(options_.periodNs);
+  LoopCommand command;
+  double lastStepS = 0.0;
+  for (std::uint64_t frame = 1; !stopRequested_.load(std::memory_order_relaxed); ++frame) {
+    const FrameTick tick = clock.waitForFrame();
+    if (tick.sincePreviousNs > 0) period_.record(tick.sincePreviousNs);
+    if (tick.skippedPeriods > 0) {
+      ++resyncs_;
+      skippedPeriods_ += tick.skippedPeriods;
+    }
+    while (commands_.tryPop(command)) apply(command);
+    FrameInputs inputs;
+    inputs.now = std::chrono::steady_clock::now();
+    inputs.previousStepS = lastStepS;
+    const FrameStatus status = stepWithDevices(model_, state_, workspace_, devices_, handles_, inputs, outputs_);
+    lastStepS = std::chrono::duration<double>(std::chrono::steady_clock::now() - inputs.now).count();
+    compute_.record(monotonicTime().nowNs() - tick.beganNs);
+    publish(status, frame);
+    if (status & kFrameStopped) break;
+  }
+}
+
+}  // namespace voxhap::controller

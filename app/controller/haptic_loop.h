@@ -1,0 +1,142 @@
+#pragma once
+/// The haptic controller's 1 kHz thread (DESIGN §7, paper §6): on absolute deadlines it
+/// takes the commands queued for it, steps the simulation with the devices that hold
+/// objects, and publishes the frame's snapshot.
+///
+/// Threads. The haptic thread owns the simulation's state and workspace and never locks,
+/// allocates, logs or blocks in a frame. One other thread (the comms thread) talks to it,
+/// through the non-blocking side of each hand-over: post() into a bounded queue, latest()
+/// from a triple buffer, takeRetired() from a second queue that hands back the devices it
+/// let go (the comms thread owns every device and deletes it once retired).
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "haptics/runtime/period_stats.h"
+#include "haptics/runtime/realtime.h"
+#include "haptics/runtime/spsc_queue.h"
+#include "haptics/runtime/triple_buffer.h"
+#include "haptics/sim/simulation.h"
+
+namespace voxhap::controller {
+
+/// A command for the haptic thread, taken at the start of the next frame.
+struct LoopCommand {
+  enum class Kind : std::uint8_t {
+    Grab,          ///< `device` holds `object` from now on (its time starts at 0 now)
+    Release,       ///< `object` goes free; its device is retired
+    SetForceLayer  ///< the force layer becomes `value`
+  };
+  Kind kind = Kind::Release;
+  std::uint32_t object = 0;
+  HapticDevice* device = nullptr;
+  std::uint32_t value = 0;
+};
+
+/// One moving object in a snapshot.
+struct ObjectSnapshot {
+  Pose pose;                 ///< local → world
+  Pose handle;               ///< its handle's pose, when held
+  bool held = false;
+  glm::dvec3 forceWorld{0.0};  ///< contact force, N
+  std::uint32_t contacts = 0;
+  double travelShare = 1.0;  ///< MaxTravel over its upper bound
+};
+
+/// What the haptic thread publishes after each frame.
+struct FrameSnapshot {
+  std::uint64_t frame = 0;
+  double timeS = 0.0;  ///< simulated
+  std::vector<ObjectSnapshot> objects;  ///< one per moving object
+  std::uint32_t forceLayer = 0;
+  FrameStatus status = kFrameOk;
+  bool stopped = false;  ///< the haptic thread has ended (a paging failure, or stop())
+  PeriodSummary period;   ///< frame start to frame start, updated every kSummaryFrames
+  PeriodSummary compute;  ///< step and hand-overs, same
+  std::uint64_t resyncs = 0;          ///< stalls after which the clock re-synced
+  std::uint64_t skippedPeriods = 0;   ///< periods those stalls skipped
+  std::uint64_t missedDeadlines = 0;  ///< the engine's (more contacts than its capacity)
+};
+
+struct HapticLoopOptions {
+  std::int64_t periodNs = 1'000'000;
+  bool realtime = true;  ///< try mlockall and SCHED_FIFO
+  int fifoPriority = 80;
+  std::size_t commandCapacity = 256;  ///< a power of two
+};
+
+class HapticLoop {
+public:
+  /// A snapshot's period and compute summaries are brought up to date every so many frames.
+  static constexpr std::uint64_t kSummaryFrames = 100;
+
+  /// `model` must outlive the loop. Allocates everything the thread will use.
+  HapticLoop(const SimModel& model, SimState initial, std::shared_ptr<VoxelPager> staticPager,
+             HapticLoopOptions options = {});
+  ~HapticLoop();
+  HapticLoop(const HapticLoop&) = delete;
+  HapticLoop& operator=(const HapticLoop&) = delete;
+
+  /// Starts the haptic thread and waits until it has tried the real-time set-up.
+  void start();
+  /// Ends the haptic thread after its current frame and joins it. Devices still held are
+  /// retired (takeRetired). Idempotent.
+  void stop();
+
+  /// Comms thread: queues `command`; false when the queue is full (nothing is queued).
+  bool post(const LoopCommand& command) noexcept;
+  /// Comms thread: a device the haptic thread let go, now the caller's to delete; nullptr
+  /// when there is none.
+  HapticDevice* takeRetired() noexcept;
+  /// Comms thread: the newest snapshot (the same object until a newer one is taken).
+  const FrameSnapshot& latest() noexcept;
+  /// What the real-time set-up achieved (valid after start()).
+  const RealtimeStatus& realtime() const noexcept { return realtime_; }
+  const SimModel& model() const noexcept { return model_; }
+  /// The whole-run statistics (valid after stop()).
+  const PeriodStats& periodStats() const noexcept { return period_; }
+  const PeriodStats& computeStats() const noexcept { return compute_; }
+
+private:
+  /// A held device with its time counted from the grab.
+  class GrabbedDevice final : public HapticDevice {
+  public:
+    Pose handlePose(double tS) noexcept override { return device->handlePose(tS - startS); }
+    HandleVelocity handleVelocity(double tS) noexcept override { return device->handleVelocity(tS - startS); }
+    void setFeedback(const CouplingWrench& feedbackWorld) noexcept override { device->setFeedback(feedbackWorld); }
+    const DeviceLimits& limits() const noexcept override { return device->limits(); }
+    HapticDevice* device = nullptr;
+    double startS = 0.0;
+  };
+
+  void run() noexcept;
+  void apply(const LoopCommand& command) noexcept;
+  void retire(std::size_t object) noexcept;
+  void publish(FrameStatus status, std::uint64_t frame) noexcept;
+
+  const SimModel& model_;
+  HapticLoopOptions options_;
+  SimState state_;
+  SimWorkspace workspace_;
+  FrameOutputs outputs_;
+  std::vector<GrabbedDevice> grabbed_;
+  std::vector<HapticDevice*> devices_;  ///< &grabbed_[i] while held, else nullptr
+  std::vector<HandleInput> handles_;
+  SpscQueue<LoopCommand> commands_;
+  SpscQueue<HapticDevice*> retired_;
+  TripleBuffer<FrameSnapshot> snapshots_;
+  PeriodStats period_;
+  PeriodStats compute_;
+  PeriodSummary periodSummary_;
+  PeriodSummary computeSummary_;
+  std::uint64_t resyncs_ = 0;
+  std::uint64_t skippedPeriods_ = 0;
+  RealtimeStatus realtime_;
+  std::atomic<bool> stopRequested_{false};
+  std::thread thread_;
+};
+
+}  // namespace voxhap::controller

@@ -1,0 +1,104 @@
+// The haptic loop in-process: a box over a plate, driven by commands from the test thread
+// (standing in for the comms thread) while the haptic thread runs on real deadlines.
+// Waits are bounded by frame counts and a wall-clock cap; nothing asserts a duration.
+
+#include "app/controller/haptic_loop.h"
+
+#include <chrono>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "haptics/geometry/mesh_builder.h"
+#include "support/contact_scenes.h"
+
+namespace voxhap::controller {
+namespace {
+
+using namespace std::chrono_literals;
+
+class HapticLoopTest : public ::testing::Test {
+protected:
+  void SetUp() override {
+    scene_.objects.push_back(test::plate());
+    scene_.objects.push_back(test::meshObject("box", ObjectRole::Dynamic, [](TriangleMesh& m) {
+      appendBox(m, test::at(0.0, 0.0, 0.012), glm::dvec3(0.01));  // 2 mm above the plate
+    }));
+    SceneModelOptions options = test::ampleCapacityOptions();
+    options.staticVoxelSizeM = 1e-3;
+    options.pointSpacingM = 1e-3;
+    model_ = buildSceneModel(scene_, {"box"}, options);
+    HapticLoopOptions loopOptions;
+    loopOptions.realtime = false;
+    loop_ = std::make_unique<HapticLoop>(model_, makeSimState(model_), nullptr, loopOptions);
+    loop_->start();
+  }
+
+  /// A copy of the newest snapshot once `done` holds for it, or the last one after 10 s.
+  template <class Done> FrameSnapshot waitFor(Done done) {
+    const auto giveUp = std::chrono::steady_clock::now() + 10s;
+    while (!done(loop_->latest()) && std::chrono::steady_clock::now() < giveUp) std::this_thread::sleep_for(1ms);
+    return loop_->latest();
+  }
+
+  /// A script that holds the handle `dropM` below the box's place from the start.
+  static ScriptedDevice pressingDevice(double dropM, const SimModel& model) {
+    Pose down;
+    down.position.z = -dropM;
+    return ScriptedDevice(MotionScript({{0.0, down}, {100.0, down}}, "press"), model.deviceLimits);
+  }
+
+  Scene scene_;
+  SimModel model_;
+  std::unique_ptr<HapticLoop> loop_;
+};
+
+TEST_F(HapticLoopTest, FramesAdvanceAndAGrabbedBoxIsPressedOntoThePlate) {
+  const std::uint64_t start = waitFor([](const FrameSnapshot& s) { return s.frame >= 10; }).frame;
+  EXPECT_GE(start, 10u);
+  auto device = std::make_unique<ScriptedDevice>(pressingDevice(0.005, model_));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, device.get(), 0}));
+  const FrameSnapshot pressed = waitFor([](const FrameSnapshot& s) {
+    return s.objects[0].held && s.objects[0].contacts > 0 && s.objects[0].pose.position.z < 0.0;
+  });
+  ASSERT_TRUE(pressed.objects[0].held);
+  EXPECT_GT(pressed.objects[0].contacts, 0u);
+  EXPECT_LT(pressed.objects[0].pose.position.z, 0.0);  // it moved down towards the handle
+  EXPECT_NEAR(pressed.objects[0].handle.position.z, -0.005, 1e-12);
+  const FrameSnapshot resting =
+      waitFor([&](const FrameSnapshot& s) { return s.frame > pressed.frame + 300; });
+  EXPECT_GT(resting.objects[0].forceWorld.z, 0.0);  // the plate pushes back up
+
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Release, 0, nullptr, 0}));
+  const FrameSnapshot released = waitFor([](const FrameSnapshot& s) { return !s.objects[0].held; });
+  EXPECT_FALSE(released.objects[0].held);
+  EXPECT_EQ(loop_->takeRetired(), device.get());
+  EXPECT_EQ(loop_->takeRetired(), nullptr);
+}
+
+TEST_F(HapticLoopTest, TheForceLayerChangesAtTheNextFrame) {
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::SetForceLayer, 0, nullptr, 3}));
+  EXPECT_EQ(waitFor([](const FrameSnapshot& s) { return s.forceLayer == 3; }).forceLayer, 3u);
+}
+
+TEST_F(HapticLoopTest, StopRetiresTheDevicesStillHeldAndKeepsItsStatistics) {
+  auto device = std::make_unique<ScriptedDevice>(pressingDevice(0.0, model_));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, device.get(), 0}));
+  waitFor([](const FrameSnapshot& s) { return s.objects[0].held && s.frame > 200; });
+  loop_->stop();
+  loop_->stop();  // a second stop does nothing
+  EXPECT_EQ(loop_->takeRetired(), device.get());
+  EXPECT_GT(loop_->periodStats().count(), 200u);
+  EXPECT_EQ(loop_->periodStats().count() + 1, loop_->computeStats().count());
+  EXPECT_FALSE(loop_->realtime().fifo.ok);  // not asked for
+}
+
+TEST_F(HapticLoopTest, AFullQueueRefusesCommandsWithoutBlocking) {
+  loop_->stop();  // nobody takes commands any more
+  int accepted = 0;
+  for (int i = 0; i < 1000; ++i) accepted += loop_->post({LoopCommand::Kind::SetForceLayer, 0, nullptr, 4}) ? 1 : 0;
+  EXPECT_EQ(accepted, 256);  // HapticLoopOptions::commandCapacity
+}
+
+}  // namespace
+}  // namespace voxhap::controller

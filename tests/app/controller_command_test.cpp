@@ -1,0 +1,293 @@
+// `voxhap controller`, run as the real executable on the committed ball-and-socket scene,
+// with clients of the front-end protocol talking to it over loopback while it runs.
+// Every wait is bounded; no assertion is about how long anything took.
+
+#include <cmath>
+#include <csignal>
+#include <fstream>
+#include <regex>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "haptics/core/error.h"
+#include "net/frontend/frontend_client.h"
+#include "support/child_process.h"
+#include "support/cli_runner.h"
+
+namespace voxhap::test {
+namespace {
+
+using namespace std::chrono_literals;
+namespace pb = net::pb;
+
+class ControllerCommand : public CliTest {
+protected:
+  /// Starts the controller with the ball-and-socket on a free loopback port with `extra`
+  /// arguments, and waits until it listens.
+  void start(std::vector<std::string> extra = {}) {
+    std::vector<std::string> args = {asset("ball-and-socket.glb"), "--move", "ball", "--voxel-size", "1mm"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    startWithout(args);
+  }
+  /// The same with only `extra` arguments (no scene unless they give one).
+  void startWithout(std::vector<std::string> extra) {
+    std::vector<std::string> args = {"controller", "--listen", "127.0.0.1:0", "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    child_ = std::make_unique<ChildProcess>(VOXHAP_EXE, args, dir_);
+    const auto port = child_->waitForStderr(std::regex("listening on 127\\.0\\.0\\.1:([0-9]+)"), 120s);
+    ASSERT_TRUE(port) << child_->err();
+    port_ = static_cast<std::uint16_t>(std::stoi(*port));
+  }
+  net::FrontendClient connect() const { return net::FrontendClient("127.0.0.1", port_, 5000ms); }
+  /// Waits for the controller to exit and returns its JSON summary.
+  nlohmann::json finish() {
+    const auto status = child_->wait(30s);
+    EXPECT_TRUE(status) << "still running\n" << child_->err();
+    EXPECT_EQ(status.value_or(-2), 0) << child_->err();
+    return nlohmann::json::parse(child_->out());
+  }
+  static pb::ClientMessage request(void (*fill)(pb::ClientMessage&)) {
+    pb::ClientMessage m;
+    fill(m);
+    return m;
+  }
+  static pb::ClientMessage forceLayer(std::uint32_t value) {
+    pb::ClientMessage m;
+    m.mutable_set_parameters()->set_force_layer(value);
+    return m;
+  }
+  static pb::ClientMessage subscribe(double rateHz) {
+    pb::ClientMessage m;
+    m.mutable_subscribe()->set_rate_hz(rateHz);
+    return m;
+  }
+
+  std::unique_ptr<ChildProcess> child_;
+  std::uint16_t port_ = 0;
+};
+
+TEST_F(ControllerCommand, AClientListsSubscribesChangesTheForceLayerAndShutsItDown) {
+  start({"--device", "script:" + asset("scripts/ball-turn.txt")});
+  net::FrontendClient client = connect();
+  const pb::HelloReply hello = client.hello("test");
+  EXPECT_NE(hello.scene().find("ball-and-socket"), std::string::npos);
+  EXPECT_DOUBLE_EQ(hello.frame_period_s(), 1e-3);
+
+  const pb::ServerMessage objects = client.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
+  ASSERT_TRUE(objects.has_object_list()) << objects.DebugString();
+  ASSERT_EQ(objects.object_list().objects_size(), 2);
+  EXPECT_EQ(objects.object_list().objects(0).name(), "ball");
+  EXPECT_TRUE(objects.object_list().objects(0).moving());
+  EXPECT_EQ(objects.object_list().objects(0).held_by().rfind("script:", 0), 0u);
+  EXPECT_GT(objects.object_list().objects(0).points(), 0u);
+  EXPECT_FALSE(objects.object_list().objects(1).moving());
+
+  ASSERT_TRUE(client.request(subscribe(200.0)).has_done());
+  std::vector<pb::FrameUpdate> updates;
+  while (updates.size() < 20) {
+    const auto event = client.nextEvent(5000ms);
+    ASSERT_TRUE(event && event->has_frame_update());
+    updates.push_back(event->frame_update());
+  }
+  for (std::size_t i = 1; i < updates.size(); ++i) EXPECT_GT(updates[i].frame(), updates[i - 1].frame());
+  ASSERT_EQ(updates.back().objects_size(), 1);
+  EXPECT_TRUE(updates.back().objects(0).has_handle());  // held by the script
+  // the script turns the ball about x: its orientation leaves the identity
+  const auto& q = updates.back().objects(0).pose().orientation();
+  EXPECT_LT(q.w(), 0.99999) << updates.back().DebugString();
+
+  EXPECT_TRUE(client.request(forceLayer(3)).has_done());
+  const pb::ServerMessage refused = client.request(forceLayer(200));
+  ASSERT_TRUE(refused.has_error());
+  EXPECT_EQ(refused.error().field(), "force_layer");
+
+  const pb::ServerMessage stats = client.request(request([](pb::ClientMessage& m) { m.mutable_get_statistics(); }));
+  ASSERT_TRUE(stats.has_statistics());
+  EXPECT_GT(stats.statistics().frames(), 0u);
+  EXPECT_GT(stats.statistics().period_max_s(), 0.0);
+
+  EXPECT_TRUE(client.request(request([](pb::ClientMessage& m) { m.mutable_shutdown(); })).has_done());
+  const nlohmann::json summary = finish();
+  EXPECT_NE(summary.at("stopped_by").get<std::string>().find("client"), std::string::npos);
+  EXPECT_GT(summary.at("frames").get<std::uint64_t>(), 0u);
+  EXPECT_GE(summary.at("requests").get<std::uint64_t>(), 6u);
+  for (const char* key : {"p50_us", "p99_us", "p999_us", "max_us"})
+    EXPECT_TRUE(summary.at("period").at(key).is_number()) << key;
+}
+
+TEST_F(ControllerCommand, BadClientsAreClosedAndTheOthersGoOn) {
+  start();
+  net::FrontendClient good = connect();
+  good.hello("good");
+  ASSERT_TRUE(good.request(subscribe(100.0)).has_done());
+
+  const std::vector<std::string> badBytes = {
+      std::string("\xff\xff\xff\x7f", 4),              // announces 2 GiB
+      std::string("\x03\x00\x00\x00\xff\xff\xff", 7),  // not a ClientMessage
+  };
+  for (const std::string& bytes : badBytes) {
+    net::FrontendClient bad = connect();
+    bad.hello("bad");
+    bad.sendRaw(bytes);
+    EXPECT_TRUE(bad.waitClosed(5000ms));
+  }
+  {
+    net::FrontendClient oldVersion = connect();
+    pb::ClientMessage hello;
+    hello.mutable_hello()->set_protocol_version(0);
+    EXPECT_TRUE(oldVersion.request(hello).has_error());
+    EXPECT_TRUE(oldVersion.waitClosed(5000ms));
+  }
+  {
+    net::FrontendClient vanishing = connect();  // leaves in the middle of a frame
+    vanishing.hello("vanishing");
+    vanishing.sendRaw(std::string("\x40\x00\x00\x00\x08\x01", 6));
+  }
+  {
+    net::FrontendClient grabbing = connect();  // holds the ball with its handle, then vanishes
+    grabbing.hello("grabbing");
+    pb::ClientMessage grab;
+    grab.mutable_grab()->set_object("ball");
+    grab.mutable_grab()->set_device("client");
+    ASSERT_TRUE(grabbing.request(grab).has_done());
+  }
+
+  // the first client is still served: updates keep coming, requests are answered
+  const auto first = good.nextEvent(5000ms);
+  ASSERT_TRUE(first && first->has_frame_update());
+  std::uint64_t last = first->frame_update().frame();
+  for (int i = 0; i < 5; ++i) {
+    const auto event = good.nextEvent(5000ms);
+    ASSERT_TRUE(event && event->has_frame_update());
+    EXPECT_GT(event->frame_update().frame(), last);
+    last = event->frame_update().frame();
+  }
+  const pb::ServerMessage objects = good.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
+  ASSERT_TRUE(objects.has_object_list());
+  EXPECT_EQ(objects.object_list().objects(0).held_by(), "") << "the vanished client's grab is released";
+
+  child_->signal(SIGTERM);
+  const nlohmann::json summary = finish();
+  EXPECT_EQ(summary.at("stopped_by"), "SIGTERM");
+  EXPECT_EQ(summary.at("protocol_violations").get<int>(), 4);  // 2 bad frames, a version, a truncation
+  EXPECT_EQ(summary.at("connections").get<int>(), 6);
+  const std::string err = child_->err();
+  for (const char* reason : {"over the limit", "not a ClientMessage", "protocol version 0", "inside a frame"})
+    EXPECT_NE(err.find(reason), std::string::npos) << reason << "\n" << err;
+}
+
+TEST_F(ControllerCommand, AClientHandleTurnsTheBall) {
+  start();
+  net::FrontendClient client = connect();
+  client.hello("mouse");
+  pb::ClientMessage grab;
+  grab.mutable_grab()->set_object("ball");
+  grab.mutable_grab()->set_device("client");
+  ASSERT_TRUE(client.request(grab).has_done());
+
+  // turn the handle 45° about x; the ball turns in its socket after it, through the coupling
+  const double half = 0.5 * 0.7853981633974483;
+  pb::ClientMessage move;
+  move.mutable_move_handle()->set_object("ball");
+  move.mutable_move_handle()->mutable_handle()->mutable_orientation()->set_w(std::cos(half));
+  move.mutable_move_handle()->mutable_handle()->mutable_orientation()->set_x(std::sin(half));
+  ASSERT_TRUE(client.request(move).has_done());
+  ASSERT_TRUE(client.request(subscribe(50.0)).has_done());
+  double alignment = 0.0;  // |q · target|: 1 when the ball's orientation is the handle's
+  for (int i = 0; i < 250 && alignment < 0.9995; ++i) {
+    const auto event = client.nextEvent(5000ms);
+    ASSERT_TRUE(event && event->has_frame_update());
+    const auto& q = event->frame_update().objects(0).pose().orientation();
+    alignment = std::abs(q.w() * std::cos(half) + q.x() * std::sin(half));
+  }
+  EXPECT_GT(alignment, 0.9995);  // within 3.6°
+
+  pb::ClientMessage bad = move;
+  bad.mutable_move_handle()->mutable_handle()->mutable_orientation()->set_w(2.0);
+  const pb::ServerMessage refused = client.request(bad);
+  ASSERT_TRUE(refused.has_error());
+  EXPECT_EQ(refused.error().field(), "handle");
+  pb::ClientMessage unknown;
+  unknown.mutable_grab()->set_object("socket");
+  unknown.mutable_grab()->set_device("client");
+  const pb::ServerMessage notMoving = client.request(unknown);
+  ASSERT_TRUE(notMoving.has_error());
+  EXPECT_EQ(notMoving.error().field(), "object");
+
+  child_->signal(SIGINT);
+  EXPECT_EQ(finish().at("stopped_by"), "SIGINT");
+}
+
+TEST_F(ControllerCommand, AClientLoadsASceneWithProgressAndThenSimulatesIt) {
+  startWithout({});
+  net::FrontendClient client = connect();
+  EXPECT_EQ(client.hello("loader").scene(), "");
+  const pb::ServerMessage none = client.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
+  ASSERT_TRUE(none.has_object_list());
+  EXPECT_EQ(none.object_list().objects_size(), 0);
+  pb::ClientMessage grab;
+  grab.mutable_grab()->set_object("ball");
+  grab.mutable_grab()->set_device("client");
+  EXPECT_NE(client.request(grab).error().message().find("no scene"), std::string::npos);
+
+  pb::ClientMessage missing;
+  missing.mutable_load_scene()->set_scene((dir_ / "nowhere.glb").string());
+  missing.mutable_load_scene()->add_move("ball");
+  const pb::ServerMessage notFound = client.request(missing);
+  ASSERT_TRUE(notFound.has_error());
+  EXPECT_EQ(notFound.error().field(), "scene");
+  pb::ClientMessage nothingMoves;
+  nothingMoves.mutable_load_scene()->set_scene(asset("ball-and-socket.glb"));
+  EXPECT_EQ(client.request(nothingMoves).error().field(), "move");
+
+  pb::ClientMessage load;
+  load.mutable_load_scene()->set_scene(asset("ball-and-socket.glb"));
+  load.mutable_load_scene()->add_move("ball");
+  load.mutable_load_scene()->set_voxel_size_m(0.001);
+  client.setTimeout(120000ms);
+  const pb::ServerMessage loaded = client.request(load);
+  ASSERT_TRUE(loaded.has_object_list()) << loaded.DebugString();
+  EXPECT_EQ(loaded.object_list().objects(0).name(), "ball");
+  double lastFraction = -1.0;
+  int progressEvents = 0;
+  while (const auto event = client.nextEvent(0ms)) {
+    ASSERT_TRUE(event->has_load_progress());
+    EXPECT_EQ(event->load_progress().request_id(), 6u);  // after hello, list, grab and two failed loads
+    EXPECT_GE(event->load_progress().fraction(), lastFraction);
+    lastFraction = event->load_progress().fraction();
+    ++progressEvents;
+  }
+  EXPECT_GT(progressEvents, 0);
+  EXPECT_EQ(lastFraction, 1.0);
+
+  EXPECT_TRUE(client.request(grab).has_done());
+  ASSERT_TRUE(client.request(subscribe(100.0)).has_done());
+  const auto update = client.nextEvent(5000ms);
+  ASSERT_TRUE(update && update->has_frame_update());
+  EXPECT_EQ(update->frame_update().objects_size(), 1);
+  child_->signal(SIGTERM);
+  EXPECT_GT(finish().at("frames").get<std::uint64_t>(), 0u);
+}
+
+TEST_F(ControllerCommand, BeyondLoopbackItWantsAToken) {
+  const CliRun r = voxhap({"controller", asset("ball-and-socket.glb"), "--move", "ball", "--listen", "0.0.0.0:0"});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("--token"), std::string::npos) << r.err;
+}
+
+TEST_F(ControllerCommand, AClientWithoutTheTokenIsRefused) {
+  const std::string tokenFile = (dir_ / "token").string();
+  std::ofstream(tokenFile) << "correct horse battery staple\n";
+  start({"--token", tokenFile});
+  net::FrontendClient without = connect();
+  EXPECT_THROW(without.hello("without"), Error);
+  net::FrontendClient with = connect();
+  EXPECT_NO_THROW(with.hello("with", "correct horse battery staple"));
+  child_->signal(SIGTERM);
+  finish();
+}
+
+}  // namespace
+}  // namespace voxhap::test

@@ -1,0 +1,46 @@
+#pragma once
+/// Test support: a real child process (the `voxhap` executable) running beside the test,
+/// with its stdout and stderr going to files the test reads while it runs, so that a
+/// test can wait for a line (the controller's listening address), talk to it over
+/// loopback, signal it and collect its exit status. Every wait is bounded.
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <sys/types.h>
+
+namespace voxhap::test {
+
+class ChildProcess {
+public:
+  /// Starts `program` with `args` in `dir`, stdin empty, stdout and stderr to files there.
+  ChildProcess(const std::string& program, const std::vector<std::string>& args, const std::filesystem::path& dir);
+  /// Kills it (SIGKILL) when still running.
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  /// Waits up to `timeout` for stderr to hold a match of `pattern`; returns the match's
+  /// first group (or the whole match), none when time ran out or the process ended first.
+  std::optional<std::string> waitForStderr(const std::regex& pattern, std::chrono::milliseconds timeout);
+  /// Sends `signal`.
+  void signal(int signal);
+  /// Waits up to `timeout` for it to end; its exit status, or -1 for a signal, none when
+  /// it is still running.
+  std::optional<int> wait(std::chrono::milliseconds timeout);
+
+  std::string out() const;
+  std::string err() const;
+
+private:
+  pid_t pid_ = -1;
+  std::optional<int> status_;
+  std::filesystem::path outFile_;
+  std::filesystem::path errFile_;
+};
+
+}  // namespace voxhap::test
