@@ -7,13 +7,18 @@
 
 namespace voxhap::cli {
 
-std::string ExtractionArgs::scriptFile() const { return script.value_or(extractionScriptPath().string()); }
+std::string ExtractionArgs::scriptFile() const {
+  return script.value_or(extractionScriptPath().string());
+}
 
-std::string ExtractionArgs::sceneName() const { return scene.value_or(kDefaultSceneName); }
+std::string ExtractionArgs::sceneName() const {
+  return scene.value_or(kDefaultSceneName);
+}
 
 void addExtractionOptions(CLI::App& command, ExtractionArgs& args) {
   addParsedOption(command, "--penetration-every", "N",
-                  "measure the exact penetration every N frames (default 1)", [&args](const std::string& text) {
+                  "measure the exact penetration every N frames (default 1)",
+                  [&args](const std::string& text) {
                     args.penetrationEvery = parseUnsigned(text, "penetration-every");
                     if (*args.penetrationEvery < 1)
                       throw UsageError("--penetration-every wants at least 1 frame");
@@ -23,7 +28,8 @@ void addExtractionOptions(CLI::App& command, ExtractionArgs& args) {
       .add_option("--script", args.script,
                   "motion script of the handle (default assets/scripts/actuator-extract.txt)")
       ->type_name("FILE");
-  command.add_option("--scene", args.scene, "a .gltf/.glb file or built-in scene name (default landing-gear)")
+  command
+      .add_option("--scene", args.scene, "a .gltf/.glb file or built-in scene name (default landing-gear)")
       ->type_name("SCENE");
   command.add_option("--move", args.move, "the object or group to pull out (default actuator)")
       ->type_name("NAME");

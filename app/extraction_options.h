@@ -19,10 +19,10 @@ namespace voxhap::cli {
 
 /// The extraction's own options as given; empty when not.
 struct ExtractionArgs {
-  SimOptions sim;                                ///< the simulation options the command takes
-  std::optional<std::string> script;             ///< --script FILE: the handle's motion script
-  std::optional<std::string> scene;              ///< --scene SCENE: a file or built-in scene name
-  std::optional<std::string> move;               ///< --move NAME: the object or group to pull out
+  SimOptions sim;                                 ///< the simulation options the command takes
+  std::optional<std::string> script;              ///< --script FILE: the handle's motion script
+  std::optional<std::string> scene;               ///< --scene SCENE: a file or built-in scene name
+  std::optional<std::string> move;                ///< --move NAME: the object or group to pull out
   std::optional<std::uint64_t> penetrationEvery;  ///< --penetration-every N: frames (≥ 1)
 
   /// The script file to run: --script, else extractionScriptPath().

@@ -24,7 +24,8 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
         break;
       case SimOption::PointOffset:
         addLengthOption(command, "--point-offset", o.pointOffsetM,
-                        "move every point along its normal, negative inward (e.g. -0.175mm)", LengthSign::Any);
+                        "move every point along its normal, negative inward (e.g. -0.175mm)",
+                        LengthSign::Any);
         break;
       case SimOption::PointLayer:
         addParsedOption(command, "--point-layer", "K",
@@ -50,9 +51,10 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
                         });
         break;
       case SimOption::VoxelMemory:
-        addParsedOption(command, "--voxel-memory", "SIZE",
-                        "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache",
-                        [&o](const std::string& text) { o.voxelMemoryBytes = parseBytes(text, "voxel-memory"); });
+        addParsedOption(
+            command, "--voxel-memory", "SIZE",
+            "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache",
+            [&o](const std::string& text) { o.voxelMemoryBytes = parseBytes(text, "voxel-memory"); });
         break;
       case SimOption::BruteForce:
         command.add_flag("--brute-force", o.bruteForce,

@@ -25,15 +25,15 @@ namespace voxhap::cli {
 
 /// The shared options as given; empty or false when not.
 struct SimOptions {
-  std::optional<double> voxelSizeM;               ///< --voxel-size: of the static voxmap, m (> 0)
-  std::optional<double> pointSpacingM;            ///< --point-spacing: of the moving objects' points, m (> 0)
-  std::optional<double> pointOffsetM;             ///< --point-offset: along each point's normal, m; < 0 inward
-  std::optional<int> pointLayer;                  ///< --point-layer: free-space layer of the points, voxels
-  bool noAwareness = false;                       ///< --no-awareness: no geometrical awareness
-  bool preContactDamping = false;                 ///< --pre-contact-damping
-  bool bruteForce = false;                        ///< --brute-force: every point every frame
-  bool noDrifting = false;                        ///< --no-drifting: no point drifting
-  std::optional<std::uint64_t> capacity;          ///< --capacity: point tests per frame (≥ 1)
+  std::optional<double> voxelSizeM;       ///< --voxel-size: of the static voxmap, m (> 0)
+  std::optional<double> pointSpacingM;    ///< --point-spacing: of the moving objects' points, m (> 0)
+  std::optional<double> pointOffsetM;     ///< --point-offset: along each point's normal, m; < 0 inward
+  std::optional<int> pointLayer;          ///< --point-layer: free-space layer of the points, voxels
+  bool noAwareness = false;               ///< --no-awareness: no geometrical awareness
+  bool preContactDamping = false;         ///< --pre-contact-damping
+  bool bruteForce = false;                ///< --brute-force: every point every frame
+  bool noDrifting = false;                ///< --no-drifting: no point drifting
+  std::optional<std::uint64_t> capacity;  ///< --capacity: point tests per frame (≥ 1)
   std::optional<std::uint64_t> voxelMemoryBytes;  ///< --voxel-memory: for the static voxels, bytes
   std::optional<DeviceLimits> deviceLimits;       ///< --device-profile NAME: that profile's limits
   std::optional<double> durationS;                ///< --duration: simulated time, s (≥ 0)

@@ -81,6 +81,22 @@ private:
   std::map<const CLI::App*, CommandHelp> help_;
 };
 
+namespace {
+
+/// CLI11's message for a flag given a value ("json was given a disallowed flag override")
+/// as "--json takes no value"; any other mismatch (a missing value) as CLI11 words it.
+std::string mismatchMistake(const std::string& message) {
+  const std::string override = " was given a disallowed flag override";
+  if (message.size() <= override.size() ||
+      message.compare(message.size() - override.size(), override.size(), override) != 0) {
+    return message;
+  }
+  const std::string name = message.substr(0, message.size() - override.size());
+  return (name.size() == 1 ? "-" : "--") + name + " takes no value";
+}
+
+}  // namespace
+
 std::string commandPath(const CLI::App& command) {
   std::string path = command.get_name();
   for (const CLI::App* parent = command.get_parent(); parent; parent = parent->get_parent()) {
@@ -171,6 +187,8 @@ int CommandTree::run(const std::vector<std::string>& args, std::ostream& out, Co
       return kExitOk;
     }
     throw UsageError(commandPath(command) + ": " + extrasMistake(command));
+  } catch (const CLI::ArgumentMismatch& e) {
+    throw UsageError(commandPath(chosen()) + ": " + mismatchMistake(e.what()));
   } catch (const CLI::ParseError& e) {
     throw UsageError(commandPath(chosen()) + ": " + e.what());
   } catch (const UsageError& e) {  // a bad value, from option_values.h

@@ -73,7 +73,7 @@ public:
   /// Parses `args` (without the program name) and runs the command they choose: prints
   /// help and returns 0 on -h/--help, prints help and returns 2 for a group given no
   /// subcommand. Throws UsageError (its message starting with the command's path) on a
-  /// usage mistake; whatever the handler throws passes through.
+  /// usage mistake; whatever the handler throws passes through. Once per tree.
   int run(const std::vector<std::string>& args, std::ostream& out, Console& console);
 
 private:

@@ -68,6 +68,7 @@ TEST_F(VoxhapCli, UsageMistakesNameTheCommandAndTheOption) {
            {{"scene", "info", "--bogus", "x"}, "voxhap scene info: unknown option '--bogus'"},
            {{"scene", "generate", "landing-gear", "--seed", "-3"}, "voxhap scene generate: --seed wants"},
            {{"scene", "generate", "landing-gear", "--seed"}, "voxhap scene generate: --seed"},
+           {{"scene", "info", "x", "--json=yes"}, "voxhap scene info: --json takes no value"},
            {{"bench", "table1", "extra"}, "voxhap bench table1: takes no arguments, got 'extra'"},
            {{"bench", "rotation", "--voxel-size", "1cm"}, "voxhap bench rotation: --voxel-size wants"},
            {{"demo", "--capacity=0"}, "voxhap demo: --capacity wants at least one point test"}}) {
