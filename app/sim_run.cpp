@@ -7,94 +7,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "app/cache_options.h"
-#include "app/cli/command.h"
 #include "haptics/core/error.h"
-#include "haptics/device/device_profile.h"
-#include "haptics/voxel/voxel_cache.h"
 
 namespace voxhap::cli {
-
-const OptionSpec kCapacityOption{"capacity", 0, "N", "point tests per frame (default: measured online)"};
-const OptionSpec kVoxelMemoryOption{
-    "voxel-memory", 0, "SIZE",
-    "most memory the static voxels may take, e.g. 2GiB; more is paged from the cache"};
-const OptionSpec kBruteForceOption{
-    "brute-force", 0, "", "test every point every frame (no time-critical sampling), for comparison"};
-const OptionSpec kDeviceProfileOption{"device-profile", 0, "NAME",
-                                      "the device's force, torque and stiffness limits, one of: " +
-                                          deviceProfileNames() + " (default scripted)"};
-const OptionSpec kNoDriftingOption{"no-drifting", 0, "",
-                                   "look every due point up in the voxmap (no point drifting, paper §5.2)"};
-
-SceneModelOptions sceneModelOptionsFromArgs(const ParsedArgs& args, Console& console,
-                                            double defaultVoxelSizeM,
-                                            std::optional<double> defaultPointSpacingM) {
-  SceneModelOptions options;
-  options.staticVoxelSizeM =
-      args.value("voxel-size") ? parseLengthM(*args.value("voxel-size"), "voxel-size") : defaultVoxelSizeM;
-  options.pointSpacingM = args.value("point-spacing")
-                              ? parseLengthM(*args.value("point-spacing"), "point-spacing")
-                              : defaultPointSpacingM.value_or(options.staticVoxelSizeM);
-  if (const auto offset = args.value("point-offset")) {
-    options.pointDisplacementM = parseLengthM(*offset, "point-offset", LengthSign::Any);
-  }
-  if (const auto layer = args.value("point-layer")) {
-    options.pointFreeLayer =
-        static_cast<int>(std::min<std::uint64_t>(parseUnsigned(*layer, "point-layer"), 1000));
-  }
-  options.sim.geometricalAwareness = !args.has("no-awareness");
-  options.sim.preContactDamping = args.has("pre-contact-damping");
-  options.sim.coherence.enabled = !args.has("brute-force");
-  options.sim.coherence.pointDrifting = !args.has("no-drifting");
-  if (const auto capacity = args.value("capacity")) {
-    options.sim.coherence.capacityTests = static_cast<double>(parseUnsigned(*capacity, "capacity"));
-    if (options.sim.coherence.capacityTests < 1) throw UsageError("--capacity wants at least one point test");
-  }
-  if (const auto profile = args.value("device-profile")) {
-    try {
-      options.sim.deviceLimits = deviceProfile(*profile).limits;
-    } catch (const Error& e) {
-      throw UsageError(std::string("--device-profile: ") + e.what());
-    }
-  }
-  const CacheOptions cache = voxelCacheOptions(args);
-  useVoxelCache(options, cache, console);
-  if (const auto memory = args.value("voxel-memory")) {
-    const std::uint64_t budget = parseBytes(*memory, "voxel-memory");
-    Console* warnings = &console;
-    options.budgetedVoxelizeFn = [cache, budget, warnings](std::span<const SceneObject* const> objects,
-                                                           const VoxelizeOptions& o,
-                                                           const ProgressFn& progress) {
-      BudgetedVoxmap v = voxelizeWithinBudget(objects, o, cache, budget, progress);
-      for (const std::string& w : v.warnings) warnings->warning(w);
-      if (v.pager) {
-        warnings->note("static voxels: " + std::to_string(v.wordBytes >> 20) +
-                       " MiB of words paged through " +
-                       std::to_string((v.pager->slotCount() * v.voxmap.pagedArrays().blockBytes) >> 20) +
-                       " MiB of memory");
-      }
-      return v;
-    };
-  }
-  return options;
-}
-
-double durationFromArgs(const ParsedArgs& args, double defaultS) {
-  const auto duration = args.value("duration");
-  if (!duration) return defaultS;
-  double seconds = -1.0;
-  try {
-    std::size_t used = 0;
-    seconds = std::stod(*duration, &used);
-    if (used != duration->size()) seconds = -1.0;
-  } catch (const std::exception&) {
-    seconds = -1.0;
-  }
-  if (!(seconds >= 0.0) || !std::isfinite(seconds))
-    throw UsageError("--duration wants seconds ≥ 0, got '" + *duration + "'");
-  return seconds;
-}
 
 void FrameStats::add(const LocalSimulation& sim, double computeUsOfFrame) {
   computeUs.push_back(computeUsOfFrame);

@@ -1,45 +1,22 @@
 #pragma once
 /// What `voxhap simulate`, `voxhap demo` and `voxhap bench extraction` share: the
-/// SceneModelOptions their command lines ask for (voxel sizes, sampling, capacity, the
-/// voxel cache), and the headless 1 kHz frame loop with its statistics and summary.
+/// headless 1 kHz frame loop with its statistics and summary (their options:
+/// sim_options.h).
 
 #include <cstdint>
 #include <functional>
-#include <optional>
 #include <ostream>
 #include <span>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "app/cli/args.h"
 #include "app/cli/console.h"
 #include "haptics/device/scripted_device.h"
 #include "haptics/sim/local_simulation.h"
 #include "haptics/sim/scene_model.h"
 
 namespace voxhap::cli {
-
-/// Options of time-critical sampling and paging, read by sceneModelOptionsFromArgs.
-extern const OptionSpec kCapacityOption;       ///< --capacity N
-extern const OptionSpec kVoxelMemoryOption;    ///< --voxel-memory SIZE
-extern const OptionSpec kBruteForceOption;     ///< --brute-force
-extern const OptionSpec kNoDriftingOption;     ///< --no-drifting
-extern const OptionSpec kDeviceProfileOption;  ///< --device-profile NAME
-
-/// SceneModelOptions from the options a command declares (any it does not declare are
-/// simply absent): --voxel-size (default `defaultVoxelSizeM`), --point-spacing (default
-/// `defaultPointSpacingM`, else the voxel size), --point-offset, --point-layer,
-/// --no-awareness, --pre-contact-damping, --brute-force, --no-drifting, --capacity,
-/// --device-profile, and the voxel cache
-/// (--cache-dir, --no-cache), whose warnings go to `console` (which must outlive the
-/// options). Throws UsageError on a bad value.
-SceneModelOptions sceneModelOptionsFromArgs(const ParsedArgs& args, Console& console,
-                                            double defaultVoxelSizeM,
-                                            std::optional<double> defaultPointSpacingM = std::nullopt);
-
-/// `--duration SECONDS` if given (UsageError unless finite and ≥ 0), else `defaultS`.
-double durationFromArgs(const ParsedArgs& args, double defaultS);
 
 /// Statistics of a run of frames, over every moving object.
 struct FrameStats {

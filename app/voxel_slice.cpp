@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "app/cli/args.h"
+#include "app/cli/option_values.h"
 
 namespace voxhap::cli {
 namespace {

@@ -2,37 +2,40 @@
 /// The benchmarks of `voxhap bench NAME`, one function each.
 ///
 /// A benchmark measures and fills a BenchTable; `voxhap bench` (commands/bench_command.cpp)
-/// parses its options, refuses what it cannot do and writes the table as text, JSON,
-/// CSV and, for benchmarks with a curve, an SVG plot. Adding one is: write a function
+/// adds its options and the output ones, refuses what it cannot do and writes the table as
+/// text, JSON, CSV and, for benchmarks with a curve, an SVG plot. Adding one is: write a function
 /// returning its Benchmark and add it to the list in bench_command.cpp.
 
 #include <functional>
+#include <optional>
 #include <string>
-#include <vector>
 
 #include "app/bench/bench_table.h"
 #include "app/bench/svg_plot.h"
-#include "app/cli/args.h"
 #include "app/cli/console.h"
+#include "app/cli/option_values.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace voxhap::cli {
 
-/// What a benchmark gets: its parsed options and the console for progress and notes.
-struct BenchContext {
-  const ParsedArgs& args;
-  Console& console;
-};
+/// Measures with the options the benchmark was given (bound when its options were added),
+/// reporting progress and notes on `console`; throws UsageError on bad options,
+/// voxhap::Error on bad data.
+using BenchRunFn = std::function<BenchTable(Console& console)>;
 
 struct Benchmark {
-  std::string name;                 ///< as typed after `voxhap bench`
-  std::string summary;              ///< one line for `voxhap bench --help`
-  std::string usage;                ///< the options it takes beyond the output ones, e.g. "[--quick]"
-  std::string description;          ///< paragraphs for `voxhap bench NAME --help`
-  std::vector<OptionSpec> options;  ///< its own options; the output options are added for it
-  /// How `--svg` plots its rows; empty for a benchmark with no curve, which refuses --svg.
-  std::function<SvgPlotSpec(const ParsedArgs&)> plot;
-  /// Measures; throws UsageError on bad options, voxhap::Error on bad data.
-  std::function<BenchTable(const BenchContext&)> run;
+  std::string name;         ///< as typed after `voxhap bench`
+  std::string summary;      ///< one line for `voxhap bench --help`
+  std::string usage;        ///< the options it takes beyond the output ones, e.g. "[--quick]"
+  std::string description;  ///< paragraphs for `voxhap bench NAME --help`
+  /// Adds its own options to `command` (the output options are added for it), bound to
+  /// fields the returned function measures with.
+  std::function<BenchRunFn(CLI::App& command)> addOptions;
+  /// How `--svg` plots its rows; none for a benchmark with no curve, which refuses --svg.
+  std::optional<SvgPlotSpec> plot;
 };
 
 /// The paper's Table 1: voxelize and load times, triangles, points and voxels of the

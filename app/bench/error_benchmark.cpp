@@ -21,9 +21,11 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <set>
 
+#include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -31,6 +33,7 @@
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
 #include "app/cli/number_format.h"
+#include "app/sim_options.h"
 #include "haptics/core/error.h"
 #include "haptics/geometry/embree_scene.h"
 #include "haptics/geometry/mesh_builder.h"
@@ -269,49 +272,30 @@ void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, dou
   table.set(r, "missed_deadlines", static_cast<std::int64_t>(sim.workspace.counters.missedDeadlines));
 }
 
-template <typename T, typename Parse>
-std::vector<T> listOption(const ParsedArgs& args, const std::string& name, std::vector<T> byDefault,
-                          Parse parse) {
-  const std::vector<std::string> given = args.values(name);
-  if (given.empty()) return byDefault;
-  std::vector<T> out;
-  for (const std::string& s : given) out.push_back(parse(s));
-  return out;
-}
+/// What `voxhap bench error` was given.
+struct ErrorArgs {
+  bool quick = false;
+  std::vector<std::string> scenes;  ///< --scene, in order
+  std::vector<double> voxelSizesM;  ///< --voxel-size, in order
+  std::vector<int> bitWidths;       ///< --bits, in order
+  SimOptions sim;                   ///< --capacity and the cache
+};
 
-BenchTable runError(const BenchContext& c) {
-  if (!c.args.positionals.empty())
-    throw UsageError("error takes no arguments, got '" + c.args.positionals[0] + "'");
-  const bool quick = c.args.has("quick");
-  std::vector<double> sizes =
-      listOption<double>(c.args, "voxel-size", {std::begin(kDefaultSizesM), std::end(kDefaultSizesM)},
-                         [](const std::string& s) { return parseLengthM(s, "voxel-size"); });
-  std::vector<int> bitWidths = listOption<int>(
-      c.args, "bits", {std::begin(kDefaultBits), std::end(kDefaultBits)}, [](const std::string& s) {
-        const auto b = parseUnsigned(s, "bits");
-        if (b != 2 && b != 4 && b != 8) throw UsageError("--bits wants 2, 4 or 8, got " + s);
-        return static_cast<int>(b);
-      });
-  const std::vector<std::string> sceneNames = c.args.values("scene");
-  for (const std::string& name : sceneNames) {
-    if (std::none_of(errorScenes().begin(), errorScenes().end(),
-                     [&](const ErrorScene& e) { return name == e.name; })) {
-      throw UsageError("--scene: no scene '" + name +
-                       "' (sphere-on-plane, box-on-plane, ball-and-socket, peg-in-hole, crossed-rods)");
-    }
-  }
+BenchTable runError(const ErrorArgs& args, Console& console) {
+  const bool quick = args.quick;
+  std::vector<double> sizes = args.voxelSizesM;
+  if (sizes.empty()) sizes.assign(std::begin(kDefaultSizesM), std::end(kDefaultSizesM));
+  std::vector<int> bitWidths = args.bitWidths;
+  if (bitWidths.empty()) bitWidths.assign(std::begin(kDefaultBits), std::end(kDefaultBits));
+  const std::vector<std::string>& sceneNames = args.scenes;
   std::vector<bool> awareness = {true, false};
   if (quick) {
     sizes = {kDefaultSizesM[0]};
     bitWidths = {4};
     awareness = {true};
   }
-  double capacity = 0.0;
-  if (const auto given = c.args.value("capacity")) {
-    capacity = static_cast<double>(parseUnsigned(*given, "capacity"));
-    if (capacity < 1.0) throw UsageError("--capacity wants at least one point test");
-  }
-  const CacheOptions cache = voxelCacheOptions(c.args);
+  const double capacity = args.sim.capacity ? static_cast<double>(*args.sim.capacity) : 0.0;
+  const CacheOptions cache = voxelCacheOptions(args.sim);
 
   BenchTable table("error", errorColumns());
   table.extra["quick"] = quick;
@@ -325,7 +309,7 @@ BenchTable runError(const BenchContext& c) {
   }
   const std::size_t total = chosen.size() * sizes.size() * bitWidths.size() * awareness.size();
   std::size_t done = 0;
-  const ProgressFn progress = c.console.progress("error");
+  const ProgressFn progress = console.progress("error");
   for (const ErrorScene* es : chosen) {
     for (const double voxelM : sizes) {
       const Scene scene = es->build(voxelM);
@@ -344,7 +328,7 @@ BenchTable runError(const BenchContext& c) {
           options.sim.geometricalAwareness = aware;
           options.sim.forceLayer = std::min(kDefaultForceLayer, VoxelEncoding::forBits(bits).maxValue());
           options.sim.coherence.capacityTests = capacity;
-          useVoxelCache(options, cache, c.console);
+          useVoxelCache(options, cache, console);
           SimModel model = buildSceneModel(scene, {es->moving}, options);
           model.objects[0].coupled = es->held;
           for (const bool coherent : {true, false})
@@ -388,16 +372,34 @@ Benchmark errorBenchmark() {
       "  voxhap bench error --quick --json\n"
       "  voxhap bench error --csv error.csv --svg error.svg\n"
       "  voxhap bench error --scene crossed-rods --voxel-size 0.5mm --bits 4";
-  b.options = {
-      {"quick", 0, "", "a small subset for CI (see above)"},
-      {"scene", 0, "NAME", "a scene to measure (repeatable; default all five)"},
-      {"voxel-size", 0, "LENGTH", "a voxel size (repeatable; default 2, 1, 0.5, 0.25 mm)"},
-      {"bits", 0, "N", "a field bit width, 2, 4 or 8 (repeatable; default all three)"},
-      {"capacity", 0, "N", "point tests per frame with coherence on (default: measured online)"},
-      kCacheDirOption,
-      kNoCacheOption,
+  b.addOptions = [](CLI::App& command) -> BenchRunFn {
+    auto args = std::make_shared<ErrorArgs>();
+    command.add_flag("--quick", args->quick, "a small subset for CI (see above)");
+    addRepeatedOption(command, "--scene", "NAME", "a scene to measure (repeatable; default all five)",
+                      [&scenes = args->scenes](const std::string& name) {
+                        if (std::none_of(errorScenes().begin(), errorScenes().end(),
+                                         [&](const ErrorScene& e) { return name == e.name; })) {
+                          throw UsageError("--scene: no scene '" + name +
+                                           "' (sphere-on-plane, box-on-plane, ball-and-socket, peg-in-hole, "
+                                           "crossed-rods)");
+                        }
+                        scenes.push_back(name);
+                      });
+    addLengthListOption(command, "--voxel-size", args->voxelSizesM,
+                        "a voxel size (repeatable; default 2, 1, 0.5, 0.25 mm)");
+    addRepeatedOption(command, "--bits", "N", "a field bit width, 2, 4 or 8 (repeatable; default all three)",
+                      [&bitWidths = args->bitWidths](const std::string& text) {
+                        const auto bits = parseUnsigned(text, "bits");
+                        if (bits != 2 && bits != 4 && bits != 8)
+                          throw UsageError("--bits wants 2, 4 or 8, got " + text);
+                        bitWidths.push_back(static_cast<int>(bits));
+                      });
+    addSimOptions(command, args->sim, {SimOption::Capacity, SimOption::Cache});
+    command.get_option("--capacity")
+        ->description("point tests per frame with coherence on (default: measured online)");
+    return [args](Console& console) { return runError(*args, console); };
   };
-  b.plot = [](const ParsedArgs&) {
+  b.plot = [] {
     SvgPlotSpec spec;
     spec.title = "Frame time against error at rest";
     spec.xKey = "abs_gap_m";
@@ -408,8 +410,7 @@ Benchmark errorBenchmark() {
     spec.logX = true;
     spec.logY = true;
     return spec;
-  };
-  b.run = runError;
+  }();
   return b;
 }
 

@@ -2,13 +2,18 @@
 // the same run as `voxhap demo` (app/extraction.h) once per row.
 
 #include <cstdint>
+#include <memory>
 #include <thread>
+
+#include <CLI/CLI.hpp>
 
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
 #include "app/cli/number_format.h"
 #include "app/extraction.h"
+#include "app/extraction_options.h"
 #include "app/scene_source.h"
+#include "app/sim_options.h"
 #include "app/sim_run.h"
 
 namespace voxhap::cli {
@@ -49,35 +54,27 @@ std::vector<BenchColumn> extractionColumns() {
   };
 }
 
-BenchTable runExtractionBench(const BenchContext& c) {
-  if (!c.args.positionals.empty()) {
-    throw UsageError("extraction takes no arguments, got '" + c.args.positionals[0] + "'");
-  }
-  const bool quick = c.args.has("quick");
-  const std::string scriptFile = c.args.value("script").value_or(extractionScriptPath().string());
+/// What `voxhap bench extraction` was given.
+struct ExtractionBenchArgs {
+  bool quick = false;
+  ExtractionArgs extraction;
+};
+
+BenchTable runExtractionBench(const ExtractionBenchArgs& args, Console& console) {
+  const bool quick = args.quick;
+  const std::string scriptFile = args.extraction.scriptFile();
   const MotionScript script = loadMotionScript(scriptFile);
-  ExtractionOptions base;
-  base.moving = c.args.value("move").value_or(kActuatorName);
-  if (c.args.value("duration")) base.durationS = durationFromArgs(c.args, 0.0);
-  if (const auto every = c.args.value("penetration-every")) {
-    base.penetrationEvery = parseUnsigned(*every, "penetration-every");
-    if (base.penetrationEvery < 1) throw UsageError("--penetration-every wants at least 1 frame");
-  }
-  if (const auto spacing = c.args.value("probe-spacing"))
-    base.probeSpacingM = parseLengthM(*spacing, "probe-spacing");
-  // parses --capacity, --brute-force and the cache options before anything is loaded
-  const SceneModelOptions check = sceneModelOptionsFromArgs(c.args, c.console, kRows[0].voxelSizeM);
+  const SimOptions& sim = args.extraction.sim;
 
   BenchTable table("extraction", extractionColumns());
   table.extra["quick"] = quick;
-  table.extra["coherence"] = check.sim.coherence.enabled;
-  table.extra["capacity"] = check.sim.coherence.capacityTests > 0.0
-                                ? nlohmann::ordered_json(check.sim.coherence.capacityTests)
-                                : nlohmann::ordered_json("measured online");
+  table.extra["coherence"] = !sim.bruteForce;
+  table.extra["capacity"] = sim.capacity ? nlohmann::ordered_json(static_cast<double>(*sim.capacity))
+                                         : nlohmann::ordered_json("measured online");
   table.extra["script"] = scriptFile;
   table.extra["threads"] = std::thread::hardware_concurrency();
 
-  const Scene scene = loadScene(c.args.value("scene").value_or(kDefaultSceneName), kDefaultSeed, c.console);
+  const Scene scene = loadScene(args.extraction.sceneName(), kDefaultSeed, console);
   table.extra["scene"] = scene.sourceName;
   std::size_t rowsToRun = 0;
   for (const ExtractionRow& row : kRows) rowsToRun += (!quick || row.quick) ? 1 : 0;
@@ -85,13 +82,13 @@ BenchTable runExtractionBench(const BenchContext& c) {
   for (const ExtractionRow& row : kRows) {
     if (quick && !row.quick) continue;
     ++rowNumber;
-    ExtractionOptions options = base;
-    options.model = sceneModelOptionsFromArgs(c.args, c.console, row.voxelSizeM, row.pointSpacingM);
+    ExtractionOptions options =
+        extractionOptions(args.extraction, console, row.voxelSizeM, row.pointSpacingM);
     options.label = "extraction " + std::to_string(rowNumber) + "/" + std::to_string(rowsToRun) + " " +
                     fixed(row.pointSpacingM * 1e3, 2) + "/" + fixed(row.voxelSizeM * 1e3, 2) + " mm";
-    const ExtractionResult r = runExtraction(scene, script, options, c.console);
-    c.console.note(options.label + ": " + fixed(r.wallS, 1) + " s, actuator " +
-                   fixed(r.actuatorProgressM, 3) + " m along the path of " + fixed(r.pathLengthM, 3) + " m");
+    const ExtractionResult r = runExtraction(scene, script, options, console);
+    console.note(options.label + ": " + fixed(r.wallS, 1) + " s, actuator " + fixed(r.actuatorProgressM, 3) +
+                 " m along the path of " + fixed(r.pathLengthM, 3) + " m");
 
     const std::size_t i = table.addRow();
     table.set(i, "voxel_size_m", row.voxelSizeM);
@@ -149,22 +146,17 @@ Benchmark extractionBenchmark() {
       "  voxhap bench extraction\n"
       "  voxhap bench extraction --quick --json\n"
       "  voxhap bench extraction --quick --brute-force --csv brute.csv";
-  b.options = {
-      {"quick", 0, "", "only the first row (1.0 / 2.5 mm), for CI"},
-      kBruteForceOption,
-      kCapacityOption,
-      kVoxelMemoryOption,
-      {"duration", 0, "SECONDS", "simulated time per row (default: the whole script)"},
-      {"penetration-every", 0, "N", "measure the exact penetration every N frames (default 1)"},
-      {"probe-spacing", 0, "LENGTH",
-       "spacing of the exact penetration's surface probes (default: voxel size / 4)"},
-      {"script", 0, "FILE", "motion script (default assets/scripts/actuator-extract.txt)"},
-      {"scene", 0, "SCENE", "a .gltf/.glb file or built-in scene name (default landing-gear)"},
-      {"move", 0, "NAME", "the object to pull out (default actuator)"},
-      kCacheDirOption,
-      kNoCacheOption,
+  b.addOptions = [](CLI::App& command) -> BenchRunFn {
+    auto args = std::make_shared<ExtractionBenchArgs>();
+    SimOptions& sim = args->extraction.sim;
+    command.add_flag("--quick", args->quick, "only the first row (1.0 / 2.5 mm), for CI");
+    addSimOptions(command, sim,
+                  {SimOption::BruteForce, SimOption::Capacity, SimOption::VoxelMemory, SimOption::Duration});
+    command.get_option("--duration")->description("simulated time per row (default: the whole script)");
+    addExtractionOptions(command, args->extraction);
+    addSimOptions(command, sim, {SimOption::Cache});
+    return [args](Console& console) { return runExtractionBench(*args, console); };
   };
-  b.run = runExtractionBench;
   return b;
 }
 

@@ -15,9 +15,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "app/bench/analytic_scenes.h"
@@ -25,6 +27,7 @@
 #include "app/cache_options.h"
 #include "app/cli/number_format.h"
 #include "app/scene_source.h"
+#include "app/sim_options.h"
 #include "app/sim_run.h"
 #include "haptics/core/error.h"
 #include "haptics/sim/local_simulation.h"
@@ -56,13 +59,17 @@ std::vector<BenchColumn> rotationColumns() {
   };
 }
 
-std::vector<double> voxelSizes(const ParsedArgs& args) {
-  if (args.has("quick")) return {kDefaultSizesM[0]};
-  const std::vector<std::string> given = args.values("voxel-size");
-  if (given.empty()) return {std::begin(kDefaultSizesM), std::end(kDefaultSizesM)};
-  std::vector<double> sizes;
-  for (const std::string& s : given) sizes.push_back(parseLengthM(s, "voxel-size"));
-  return sizes;
+/// What `voxhap bench rotation` was given.
+struct RotationArgs {
+  bool quick = false;
+  std::vector<double> voxelSizesM;  ///< --voxel-size, in order
+  SimOptions sim;                   ///< --capacity and the cache
+};
+
+std::vector<double> voxelSizes(const RotationArgs& args) {
+  if (args.quick) return {kDefaultSizesM[0]};
+  if (args.voxelSizesM.empty()) return {std::begin(kDefaultSizesM), std::end(kDefaultSizesM)};
+  return args.voxelSizesM;
 }
 
 /// The handle `angleRad` about x through `centre`, turning at `rateRadPerS`.
@@ -73,17 +80,15 @@ HandleInput handleAt(const glm::dvec3& centre, double angleRad, double rateRadPe
   return {pose, {glm::cross(omega, pose.position - centre), omega}};
 }
 
-void measureRow(const Scene& scene, double voxelM, const BenchContext& c, const CacheOptions& cache,
-                BenchTable& table, const std::string& label) {
+void measureRow(const Scene& scene, double voxelM, const RotationArgs& args, Console& console,
+                const CacheOptions& cache, BenchTable& table, const std::string& label) {
   SceneModelOptions options;
   options.staticVoxelSizeM = voxelM;
   options.pointSpacingM = voxelM;
   options.pointDisplacementM = -0.5 * voxelM;
-  if (const auto capacity = c.args.value("capacity")) {
-    options.sim.coherence.capacityTests = static_cast<double>(parseUnsigned(*capacity, "capacity"));
-  }
-  useVoxelCache(options, cache, c.console);
-  const SimModel model = buildSceneModel(scene, {"ball"}, options, c.console.progress(label + ": preparing"));
+  if (args.sim.capacity) options.sim.coherence.capacityTests = static_cast<double>(*args.sim.capacity);
+  useVoxelCache(options, cache, console);
+  const SimModel model = buildSceneModel(scene, {"ball"}, options, console.progress(label + ": preparing"));
   const MovingObjectModel& ball = model.objects[0];
   const glm::dvec3 centre = ball.body.comLocal;  // the scene file's placement is the world frame
   const double limitFrames = 2.0 * std::numbers::pi * ball.shellRadiusM / ball.maxTravelM;
@@ -99,7 +104,7 @@ void measureRow(const Scene& scene, double voxelM, const BenchContext& c, const 
   double realTimeS = 0.0;
   double sumContacts = 0.0, sumTested = 0.0, sumScale = 0.0;
   std::uint64_t overBudget = 0;
-  const ProgressFn progress = c.console.progress(label + ": turning");
+  const ProgressFn progress = console.progress(label + ": turning");
   HandleInput handles[1];
   while (turnedRad < 2.0 * std::numbers::pi && computeUs.size() < giveUpFrames) {
     handles[0] = handleAt(centre, turnedRad + kLeadRad, rateRadPerS);
@@ -133,27 +138,22 @@ void measureRow(const Scene& scene, double voxelM, const BenchContext& c, const 
   table.set(r, "compute_p50_us", percentile(computeUs, 0.5));
   table.set(r, "compute_p99_us", percentile(computeUs, 0.99));
   table.set(r, "turned_rad", turnedRad);
-  c.console.note(label + ": " +
-                 (turnedRad >= 2.0 * std::numbers::pi ? "turned once in " + fixed(realTimeS, 3) + " s"
-                                                      : "gave up after " + fixed(frames * model.dtS, 1) +
-                                                            " s at " + fixed(turnedRad, 2) + " rad"));
+  console.note(label + ": " +
+               (turnedRad >= 2.0 * std::numbers::pi ? "turned once in " + fixed(realTimeS, 3) + " s"
+                                                    : "gave up after " + fixed(frames * model.dtS, 1) +
+                                                          " s at " + fixed(turnedRad, 2) + " rad"));
 }
 
-BenchTable runRotation(const BenchContext& c) {
-  if (!c.args.positionals.empty())
-    throw UsageError("rotation takes no arguments, got '" + c.args.positionals[0] + "'");
-  const std::vector<double> sizes = voxelSizes(c.args);
-  if (const auto capacity = c.args.value("capacity"); capacity && parseUnsigned(*capacity, "capacity") < 1) {
-    throw UsageError("--capacity wants at least one point test");
-  }
-  const CacheOptions cache = voxelCacheOptions(c.args);
-  const Scene scene = loadScene("ball-and-socket", kDefaultSeed, c.console);
+BenchTable runRotation(const RotationArgs& args, Console& console) {
+  const std::vector<double> sizes = voxelSizes(args);
+  const CacheOptions cache = voxelCacheOptions(args.sim);
+  const Scene scene = loadScene("ball-and-socket", kDefaultSeed, console);
   BenchTable table("rotation", rotationColumns());
   table.extra["lead_rad"] = kLeadRad;
-  table.extra["capacity"] = c.args.value("capacity") ? "fixed" : "measured online";
+  table.extra["capacity"] = args.sim.capacity ? "fixed" : "measured online";
   table.extra["paper"] = {{"voxel_size_m", 0.35e-3}, {"rotation_s", 1.28}, {"mean_contacts", 250}};
   for (std::size_t i = 0; i < sizes.size(); ++i) {
-    measureRow(scene, sizes[i], c, cache, table,
+    measureRow(scene, sizes[i], args, console, cache, table,
                "rotation " + std::to_string(i + 1) + "/" + std::to_string(sizes.size()) + " " +
                    fixed(sizes[i] * 1e3, 3) + " mm");
   }
@@ -186,14 +186,15 @@ Benchmark rotationBenchmark() {
       "  voxhap bench rotation --quick\n"
       "  voxhap bench rotation --voxel-size 0.35mm --voxel-size 0.15mm --json\n"
       "  voxhap bench rotation --capacity 100000 --csv rotation.csv";
-  b.options = {
-      {"quick", 0, "", "only 0.35 mm, for CI"},
-      {"voxel-size", 0, "LENGTH", "a voxel size to measure (repeatable; default the four above)"},
-      kCapacityOption,
-      kCacheDirOption,
-      kNoCacheOption,
+  b.addOptions = [](CLI::App& command) -> BenchRunFn {
+    auto args = std::make_shared<RotationArgs>();
+    command.add_flag("--quick", args->quick, "only 0.35 mm, for CI");
+    addLengthListOption(command, "--voxel-size", args->voxelSizesM,
+                        "a voxel size to measure (repeatable; default the four above)");
+    addSimOptions(command, args->sim, {SimOption::Capacity, SimOption::Cache});
+    return [args](Console& console) { return runRotation(*args, console); };
   };
-  b.plot = [](const ParsedArgs&) {
+  b.plot = [] {
     SvgPlotSpec spec;
     spec.title = "Ball turned once in its socket";
     spec.xKey = "voxel_size_m";
@@ -202,8 +203,7 @@ Benchmark rotationBenchmark() {
     spec.yLabel = "one turn, s (real time)";
     spec.logX = true;
     return spec;
-  };
-  b.run = runRotation;
+  }();
   return b;
 }
 

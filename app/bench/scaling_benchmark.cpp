@@ -25,12 +25,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
+#include <optional>
+
+#include <CLI/CLI.hpp>
 
 #include "app/bench/analytic_scenes.h"
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
 #include "app/cli/number_format.h"
+#include "app/sim_options.h"
 #include "app/sim_run.h"
 #include "haptics/core/error.h"
 #include "haptics/sim/local_simulation.h"
@@ -96,17 +101,19 @@ std::vector<BenchColumn> scalingColumns() {
   };
 }
 
-std::vector<std::uint64_t> pointCounts(const ParsedArgs& args) {
-  if (args.has("quick")) return {kDefaultPoints[0], kDefaultPoints[1]};
-  const std::vector<std::string> given = args.values("points");
-  if (given.empty()) return {std::begin(kDefaultPoints), std::end(kDefaultPoints)};
-  std::vector<std::uint64_t> counts;
-  for (const std::string& s : given) {
-    const std::uint64_t n = parseUnsigned(s, "points");
-    if (n < 100 || n > 100'000'000) throw UsageError("--points wants 100 … 100000000, got " + s);
-    counts.push_back(n);
-  }
-  return counts;
+/// What `voxhap bench scaling` was given.
+struct ScalingArgs {
+  bool quick = false;
+  std::vector<std::uint64_t> points;       ///< --points, in order
+  std::optional<double> staticVoxelSizeM;  ///< --static-voxel-size
+  std::optional<std::uint64_t> seconds;    ///< --seconds (≥ 1)
+  SimOptions sim;                          ///< --capacity and the cache
+};
+
+std::vector<std::uint64_t> pointCounts(const ScalingArgs& args) {
+  if (args.quick) return {kDefaultPoints[0], kDefaultPoints[1]};
+  if (args.points.empty()) return {std::begin(kDefaultPoints), std::end(kDefaultPoints)};
+  return args.points;
 }
 
 Scene tileScene() {
@@ -146,18 +153,16 @@ double microsecondsOfStep(LocalSimulation& sim, const HandleInput& handle) {
 }
 
 void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVoxelM, double seconds,
-                bool quick, const BenchContext& c, const CacheOptions& cache, BenchTable& table,
-                const std::string& label) {
+                bool quick, const ScalingArgs& args, Console& console, const CacheOptions& cache,
+                BenchTable& table, const std::string& label) {
   const double spacingM = spacingFor(targetPoints);
   SceneModelOptions options;
   options.staticVoxelSizeM = staticVoxelM > 0.0 ? staticVoxelM : spacingM;
   options.pointSpacingM = spacingM;
-  if (const auto capacity = c.args.value("capacity")) {
-    options.sim.coherence.capacityTests = static_cast<double>(parseUnsigned(*capacity, "capacity"));
-  }
-  useVoxelCache(options, cache, c.console);
+  if (args.sim.capacity) options.sim.coherence.capacityTests = static_cast<double>(*args.sim.capacity);
+  useVoxelCache(options, cache, console);
   const auto buildStart = std::chrono::steady_clock::now();
-  SimModel model = buildSceneModel(scene, {"tile"}, options, c.console.progress(label + ": preparing"));
+  SimModel model = buildSceneModel(scene, {"tile"}, options, console.progress(label + ": preparing"));
   const double buildS = secondsSince(buildStart);
   const std::size_t points = model.objects[0].shell.size();
 
@@ -170,7 +175,7 @@ void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVox
   double sumTested = 0.0, sumContacts = 0.0, sumScale = 0.0, sumTravel = 0.0;
   std::uint32_t maxContacts = 0;
   std::uint64_t overBudget = 0;
-  const ProgressFn progress = c.console.progress(label + ": coherent");
+  const ProgressFn progress = console.progress(label + ": coherent");
   for (std::uint64_t f = 0; f < frames; ++f) {
     const double us = microsecondsOfStep(sim, handleAt(state.timeS + model.dtS));
     computeUs.push_back(us);
@@ -194,7 +199,7 @@ void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVox
   LocalSimulation brute(model);
   std::vector<double> bruteUs;
   bruteUs.reserve(bruteFrames);
-  const ProgressFn bruteProgress = c.console.progress(label + ": brute force");
+  const ProgressFn bruteProgress = console.progress(label + ": brute force");
   for (std::uint64_t f = 0; f < bruteFrames; ++f) {
     bruteUs.push_back(microsecondsOfStep(brute, handleAt(brute.state.timeS + model.dtS)));
     if (bruteProgress) bruteProgress(static_cast<double>(f) / static_cast<double>(bruteFrames));
@@ -222,37 +227,27 @@ void measureRow(const Scene& scene, std::uint64_t targetPoints, double staticVox
   table.set(r, "brute_p50_us", bruteP50);
   table.set(r, "speedup", coherentP50 > 0.0 ? bruteP50 / coherentP50 : 0.0);
   table.set(r, "build_s", buildS);
-  c.console.note(label + ": " + withCommas(points) + " points, p50 " + fixed(coherentP50, 0) + " us, brute " +
-                 fixed(bruteP50, 0) + " us, " + withCommas(missed) + " missed deadlines");
+  console.note(label + ": " + withCommas(points) + " points, p50 " + fixed(coherentP50, 0) + " us, brute " +
+               fixed(bruteP50, 0) + " us, " + withCommas(missed) + " missed deadlines");
 }
 
-BenchTable runScaling(const BenchContext& c) {
-  if (!c.args.positionals.empty())
-    throw UsageError("scaling takes no arguments, got '" + c.args.positionals[0] + "'");
-  const bool quick = c.args.has("quick");
-  const std::vector<std::uint64_t> counts = pointCounts(c.args);
-  if (const auto capacity = c.args.value("capacity"); capacity && parseUnsigned(*capacity, "capacity") < 1) {
-    throw UsageError("--capacity wants at least one point test");
-  }
+BenchTable runScaling(const ScalingArgs& args, Console& console) {
+  const bool quick = args.quick;
+  const std::vector<std::uint64_t> counts = pointCounts(args);
   // 0: the plate's voxels as fine as the row's points
-  const double staticVoxelM = c.args.value("static-voxel-size")
-                                  ? parseLengthM(*c.args.value("static-voxel-size"), "static-voxel-size")
-                                  : 0.0;
-  double seconds = quick ? kQuickSeconds : kDefaultSeconds;
-  if (const auto s = c.args.value("seconds")) {
-    seconds = static_cast<double>(parseUnsigned(*s, "seconds"));
-    if (seconds < 1.0) throw UsageError("--seconds wants at least 1");
-  }
-  const CacheOptions cache = voxelCacheOptions(c.args);
+  const double staticVoxelM = args.staticVoxelSizeM.value_or(0.0);
+  const double seconds =
+      args.seconds ? static_cast<double>(*args.seconds) : (quick ? kQuickSeconds : kDefaultSeconds);
+  const CacheOptions cache = voxelCacheOptions(args.sim);
   const Scene scene = tileScene();
   BenchTable table("scaling", scalingColumns());
   table.extra["quick"] = quick;
   table.extra["scene"] = "tile 80 x 80 x 8 mm pressed 0.5 mm into a plate, sliding and rocking";
-  table.extra["capacity"] = c.args.value("capacity") ? "fixed" : "measured online";
+  table.extra["capacity"] = args.sim.capacity ? "fixed" : "measured online";
   table.extra["seconds"] = seconds;
   table.extra["budget_us"] = kBudgetUs;
   for (std::size_t i = 0; i < counts.size(); ++i) {
-    measureRow(scene, counts[i], staticVoxelM, seconds, quick, c, cache, table,
+    measureRow(scene, counts[i], staticVoxelM, seconds, quick, args, console, cache, table,
                "scaling " + std::to_string(i + 1) + "/" + std::to_string(counts.size()) + " " +
                    scientific(static_cast<double>(counts[i]), 1) + " points");
   }
@@ -287,16 +282,28 @@ Benchmark scalingBenchmark() {
       "  voxhap bench scaling --quick\n"
       "  voxhap bench scaling --csv scaling.csv --svg scaling.svg\n"
       "  voxhap bench scaling --points 300000 --capacity 20000 --json";
-  b.options = {
-      {"quick", 0, "", "only 10^4 and 10^5 points, 1 s each, for CI"},
-      {"points", 0, "N", "a pointshell size to measure (repeatable; default the four above)"},
-      {"static-voxel-size", 0, "LENGTH", "the plate's voxel size in every row (default: the row's spacing)"},
-      {"seconds", 0, "S", "length of the coherent run, s (default 5)"},
-      kCapacityOption,
-      kCacheDirOption,
-      kNoCacheOption,
+  b.addOptions = [](CLI::App& command) -> BenchRunFn {
+    auto args = std::make_shared<ScalingArgs>();
+    command.add_flag("--quick", args->quick, "only 10^4 and 10^5 points, 1 s each, for CI");
+    addRepeatedOption(command, "--points", "N",
+                      "a pointshell size to measure (repeatable; default the four above)",
+                      [&points = args->points](const std::string& text) {
+                        const std::uint64_t n = parseUnsigned(text, "points");
+                        if (n < 100 || n > 100'000'000)
+                          throw UsageError("--points wants 100 … 100000000, got " + text);
+                        points.push_back(n);
+                      });
+    addLengthOption(command, "--static-voxel-size", args->staticVoxelSizeM,
+                    "the plate's voxel size in every row (default: the row's spacing)");
+    addParsedOption(command, "--seconds", "S", "length of the coherent run, s (default 5)",
+                    [&seconds = args->seconds](const std::string& text) {
+                      seconds = parseUnsigned(text, "seconds");
+                      if (*seconds < 1) throw UsageError("--seconds wants at least 1");
+                    });
+    addSimOptions(command, args->sim, {SimOption::Capacity, SimOption::Cache});
+    return [args](Console& console) { return runScaling(*args, console); };
   };
-  b.plot = [](const ParsedArgs&) {
+  b.plot = [] {
     SvgPlotSpec spec;
     spec.title = "Frame compute against pointshell size";
     spec.xKey = "points";
@@ -305,8 +312,7 @@ Benchmark scalingBenchmark() {
     spec.yLabel = "compute p99, us";
     spec.logX = true;
     return spec;
-  };
-  b.run = runScaling;
+  }();
   return b;
 }
 

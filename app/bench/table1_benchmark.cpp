@@ -11,12 +11,14 @@
 #include <optional>
 #include <thread>
 
+#include <CLI/CLI.hpp>
 #include <unistd.h>
 
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
 #include "app/cli/number_format.h"
 #include "app/scene_source.h"
+#include "app/sim_options.h"
 #include "app/voxelize_objects.h"
 #include "haptics/core/error.h"
 #include "haptics/voxel/voxel_cache.h"
@@ -112,14 +114,17 @@ Measured measure(std::span<const SceneObject* const> objects, const std::string&
   return m;
 }
 
-BenchTable runTable1(const BenchContext& c) {
-  if (!c.args.positionals.empty()) {
-    throw UsageError("table1 takes no arguments, got '" + c.args.positionals[0] + "'");
-  }
-  const bool quick = c.args.has("quick");
-  const std::uint64_t seed =
-      c.args.value("seed") ? parseUnsigned(*c.args.value("seed"), "seed") : kDefaultSeed;
-  const CacheOptions userCache = voxelCacheOptions(c.args);
+/// What `voxhap bench table1` was given.
+struct Table1Args {
+  bool quick = false;
+  std::uint64_t seed = kDefaultSeed;
+  SimOptions sim;  ///< the cache
+};
+
+BenchTable runTable1(const Table1Args& args, Console& console) {
+  const bool quick = args.quick;
+  const std::uint64_t seed = args.seed;
+  const CacheOptions userCache = voxelCacheOptions(args.sim);
   std::unique_ptr<ScratchCache> scratch;
   CacheOptions cache{{}, false};
   if (userCache.enabled) {
@@ -143,7 +148,7 @@ BenchTable runTable1(const BenchContext& c) {
     ++rowNumber;
     if (sceneName != row.scene) {
       scene.reset();  // one scene in memory at a time
-      scene = loadScene(row.scene, seed, c.console);
+      scene = loadScene(row.scene, seed, console);
       sceneName = row.scene;
     }
     const std::string label = "table1 " + std::to_string(rowNumber) + "/" + std::to_string(rowsToRun) + " " +
@@ -151,10 +156,10 @@ BenchTable runTable1(const BenchContext& c) {
                               fixed(row.voxelSizeM * 1e3, 2) + " mm";
     const std::vector<const SceneObject*> statics = objectsToVoxelize(*scene, std::nullopt);
     const std::vector<const SceneObject*> dynamic = objectsToVoxelize(*scene, std::string(row.dynamicObject));
-    const Measured s = measure(statics, kStaticObjectsName, row.voxelSizeM, cache, c.console, label);
-    const Measured d = measure(dynamic, row.dynamicObject, row.pointSpacingM, cache, c.console, label);
-    c.console.note(label + ": voxelized in " + fixed(s.voxelizeS + d.voxelizeS, 2) + " s" +
-                   (s.loadS && d.loadS ? ", loaded in " + fixed(*s.loadS + *d.loadS, 2) + " s" : ""));
+    const Measured s = measure(statics, kStaticObjectsName, row.voxelSizeM, cache, console, label);
+    const Measured d = measure(dynamic, row.dynamicObject, row.pointSpacingM, cache, console, label);
+    console.note(label + ": voxelized in " + fixed(s.voxelizeS + d.voxelizeS, 2) + " s" +
+                 (s.loadS && d.loadS ? ", loaded in " + fixed(*s.loadS + *d.loadS, 2) + " s" : ""));
 
     const std::size_t r = table.addRow();
     table.set(r, "scenario", std::string(row.scene));
@@ -194,13 +199,14 @@ Benchmark table1Benchmark() {
       "  voxhap bench table1\n"
       "  voxhap bench table1 --quick --json\n"
       "  voxhap bench table1 --csv table1.csv --cache-dir /scratch/voxhap";
-  b.options = {
-      {"quick", 0, "", "only the small rows (ball 0.35 mm, landing gear 2.5 / 1.0 mm), for CI"},
-      {"seed", 0, "N", "seed of the generated landing gear (default 1)"},
-      kCacheDirOption,
-      kNoCacheOption,
+  b.addOptions = [](CLI::App& command) -> BenchRunFn {
+    auto args = std::make_shared<Table1Args>();
+    command.add_flag("--quick", args->quick,
+                     "only the small rows (ball 0.35 mm, landing gear 2.5 / 1.0 mm), for CI");
+    addUnsignedOption(command, "--seed", args->seed, "seed of the generated landing gear (default 1)");
+    addSimOptions(command, args->sim, {SimOption::Cache});
+    return [args](Console& console) { return runTable1(*args, console); };
   };
-  b.run = runTable1;
   return b;
 }
 

@@ -2,7 +2,11 @@
 // output options they all share.
 
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <sstream>
+
+#include <CLI/CLI.hpp>
 
 #include "app/bench/benchmark.h"
 #include "app/cli/command.h"
@@ -20,9 +24,12 @@ std::vector<Benchmark> benchmarks() {
           errorBenchmark()};
 }
 
-const OptionSpec kJsonOption{"json", 0, "", "print one JSON document {\"benchmark\", \"rows\", …} on stdout"};
-const OptionSpec kCsvOption{"csv", 0, "FILE", "also write the rows as CSV (header line of keys) to FILE"};
-const OptionSpec kSvgOption{"svg", 0, "FILE", "also plot the rows as an SVG picture in FILE"};
+/// The output options every benchmark takes.
+struct BenchOutput {
+  bool json = false;
+  std::optional<std::string> csv;
+  std::optional<std::string> svg;
+};
 
 /// Throws voxhap::Error unless the folder `file` would be written in exists, so that a
 /// long run is not lost to a typo in the output path.
@@ -34,27 +41,24 @@ void checkWritable(const std::string& option, const std::string& file) {
   }
 }
 
-int runBenchmark(const Benchmark& benchmark, const CommandContext& c) {
-  const std::optional<std::string> csv = c.args.value(kCsvOption.longName);
-  const std::optional<std::string> svg = c.args.value(kSvgOption.longName);
-  if (svg && !benchmark.plot) {
-    throw UsageError("bench " + benchmark.name + ": --svg: " + benchmark.name +
+int runBenchmark(const Benchmark& benchmark, const BenchRunFn& measure, const BenchOutput& output,
+                 const CommandContext& c) {
+  if (output.svg && !benchmark.plot) {
+    throw UsageError("--svg: " + benchmark.name +
                      " is a table of figures with no curve to plot; use --csv or --json");
   }
-  std::optional<SvgPlotSpec> plot;
-  if (svg) plot = benchmark.plot(c.args);
-  if (csv) checkWritable(kCsvOption.longName, *csv);
-  if (svg) checkWritable(kSvgOption.longName, *svg);
+  if (output.csv) checkWritable("csv", *output.csv);
+  if (output.svg) checkWritable("svg", *output.svg);
 
-  const BenchTable table = benchmark.run(BenchContext{c.args, c.console});
+  const BenchTable table = measure(c.console);
 
-  if (csv) {
+  if (output.csv) {
     std::ostringstream text;
     writeBenchCsv(text, table);
-    writeTextFileAtomically(*csv, text.str());
+    writeTextFileAtomically(*output.csv, text.str());
   }
-  if (svg) writeTextFileAtomically(*svg, svgPlot(table, *plot));
-  if (c.args.has(kJsonOption.longName)) {
+  if (output.svg) writeTextFileAtomically(*output.svg, svgPlot(table, *benchmark.plot));
+  if (output.json) {
     c.out << benchJson(table).dump(2) << "\n";
   } else {
     writeBenchText(c.out, table);
@@ -62,28 +66,33 @@ int runBenchmark(const Benchmark& benchmark, const CommandContext& c) {
   return kExitOk;
 }
 
-Command commandOf(const Benchmark& benchmark) {
-  Command command;
-  command.name = benchmark.name;
-  command.summary = benchmark.summary;
-  command.usage = "voxhap bench " + benchmark.name + (benchmark.usage.empty() ? "" : " " + benchmark.usage) +
-                  "\n       [--json] [--csv FILE]" + (benchmark.plot ? " [--svg FILE]" : "");
-  command.description = benchmark.description;
-  command.options = benchmark.options;
-  command.options.push_back(kJsonOption);
-  command.options.push_back(kCsvOption);
-  OptionSpec svg = kSvgOption;
-  if (!benchmark.plot) svg.help = "refused: " + benchmark.name + " has no curve to plot";
-  command.options.push_back(svg);
-  command.run = [benchmark](const CommandContext& c) { return runBenchmark(benchmark, c); };
-  return command;
+void addBenchmark(CommandTree& tree, CLI::App& group, const Benchmark& benchmark) {
+  CommandHelp help;
+  help.summary = benchmark.summary;
+  help.usage = "voxhap bench " + benchmark.name + (benchmark.usage.empty() ? "" : " " + benchmark.usage) +
+               "\n       [--json] [--csv FILE]" + (benchmark.plot ? " [--svg FILE]" : "");
+  help.description = benchmark.description;
+  auto output = std::make_shared<BenchOutput>();
+  auto measure = std::make_shared<BenchRunFn>();
+  CLI::App& command =
+      tree.add(group, benchmark.name, std::move(help), [benchmark, measure, output](const CommandContext& c) {
+        return runBenchmark(benchmark, *measure, *output, c);
+      });
+  *measure = benchmark.addOptions(command);
+  command.add_flag("--json", output->json, "print one JSON document {\"benchmark\", \"rows\", …} on stdout");
+  command.add_option("--csv", output->csv, "also write the rows as CSV (header line of keys) to FILE")
+      ->type_name("FILE");
+  command
+      .add_option("--svg", output->svg,
+                  benchmark.plot ? "also plot the rows as an SVG picture in FILE"
+                                 : "refused: " + benchmark.name + " has no curve to plot")
+      ->type_name("FILE");
 }
 
 }  // namespace
 
-Command benchCommand() {
-  Command bench;
-  bench.name = "bench";
+void addBenchCommands(CommandTree& tree) {
+  CommandHelp bench;
   bench.summary = "Run a benchmark of the paper (Table 1, …) and print its rows.";
   bench.usage = "voxhap bench NAME [OPTIONS] [--json] [--csv FILE]";
   bench.description =
@@ -96,8 +105,8 @@ Command benchCommand() {
       "  voxhap bench table1 --quick --json\n"
       "  voxhap bench table1 --csv table1.csv";
   bench.subcommandNoun = "benchmark";
-  for (const Benchmark& benchmark : benchmarks()) bench.subcommands.push_back(commandOf(benchmark));
-  return bench;
+  CLI::App& group = tree.add(tree.root(), "bench", std::move(bench));
+  for (const Benchmark& benchmark : benchmarks()) addBenchmark(tree, group, benchmark);
 }
 
 }  // namespace voxhap::cli

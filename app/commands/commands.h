@@ -1,21 +1,23 @@
 #pragma once
-/// The subcommands of `voxhap`, one function each, assembled in cli/command.cpp.
+/// The subcommands of `voxhap`, one function each, assembled in cli/command.cpp. Each adds
+/// its command (or group) under the tree's root, with its options bound to the fields of
+/// a struct its handler owns.
 
 #include "app/cli/command.h"
 
 namespace voxhap::cli {
 
 /// `voxhap scene info|generate`.
-Command sceneCommand();
+void addSceneCommands(CommandTree& tree);
 /// `voxhap simulate`: the headless 1 kHz simulation driven by motion scripts.
-Command simulateCommand();
+void addSimulateCommand(CommandTree& tree);
 /// `voxhap voxelize`: one object's or the static environment's voxmap, Table 1 figures.
-Command voxelizeCommand();
+void addVoxelizeCommand(CommandTree& tree);
 /// `voxhap bench NAME`: the paper's measurements (Table 1, …) as tables, JSON, CSV, SVG.
-Command benchCommand();
+void addBenchCommands(CommandTree& tree);
 /// `voxhap demo`: the main job on the built-in default scene.
-Command demoCommand();
+void addDemoCommand(CommandTree& tree);
 /// `voxhap controller`: the haptic controller serving front ends.
-Command controllerCommand();
+void addControllerCommand(CommandTree& tree);
 
 }  // namespace voxhap::cli

@@ -3,12 +3,14 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/cache_options.h"
+#include <CLI/CLI.hpp>
+
 #include "app/cli/command.h"
+#include "app/cli/option_values.h"
 #include "app/commands/commands.h"
 #include "app/controller/controller_run.h"
 #include "app/extraction.h"
-#include "app/sim_run.h"
+#include "app/sim_options.h"
 #include "haptics/core/error.h"
 
 namespace voxhap::cli {
@@ -39,34 +41,46 @@ std::string readToken(const std::string& file) {
   return token;
 }
 
-int runControllerCommand(const CommandContext& c) {
-  if (c.args.positionals.size() > 1) throw UsageError("takes one SCENE at most");
+/// What `voxhap controller` was given.
+struct ControllerArgs {
+  std::string scene;
+  std::vector<std::string> moving;
+  SimOptions sim;
+  std::optional<std::string> listen;
+  std::optional<std::string> tokenFile;
+  std::string device;
+  std::optional<double> durationS;
+  bool noRealtime = false;
+  bool json = false;
+};
+
+int runControllerCommand(const ControllerArgs& args, const CommandContext& c) {
   ControllerOptions options;
-  if (!c.args.positionals.empty()) options.scene = c.args.positionals[0];
-  options.moving = c.args.values("move");
+  options.scene = args.scene;
+  options.moving = args.moving;
   if (!options.scene.empty() && options.moving.empty())
     throw UsageError("--move NAME is required with a SCENE (the object the controller moves)");
   if (options.scene.empty() && !options.moving.empty()) throw UsageError("--move wants a SCENE");
-  options.model = sceneModelOptionsFromArgs(c.args, c.console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
-  if (const auto listen = c.args.value("listen")) parseListen(*listen, options);
-  if (const auto token = c.args.value("token")) options.token = readToken(*token);
-  options.device = c.args.value("device").value_or("");
-  if (!options.device.empty() && options.device.rfind("script:", 0) != 0)
-    throw UsageError("--device wants script:FILE, not '" + options.device + "'");
-  if (!options.device.empty() && options.scene.empty()) throw UsageError("--device wants a SCENE");
-  if (c.args.value("duration")) options.durationS = durationFromArgs(c.args, 0.0);
-  options.realtime = !c.args.has("no-realtime");
-  options.json = c.args.has("json");
+  if (!args.device.empty() && args.device.rfind("script:", 0) != 0)
+    throw UsageError("--device wants script:FILE, not '" + args.device + "'");
+  if (!args.device.empty() && options.scene.empty()) throw UsageError("--device wants a SCENE");
+  options.model = sceneModelOptions(args.sim, c.console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
+  if (args.listen) parseListen(*args.listen, options);
+  if (args.tokenFile) options.token = readToken(*args.tokenFile);
+  options.device = args.device;
+  options.durationS = args.durationS;
+  options.realtime = !args.noRealtime;
+  options.json = args.json;
   runController(options, c.console, c.out);
   return kExitOk;
 }
 
 }  // namespace
 
-Command controllerCommand() {
-  Command controller;
-  controller.name = "controller";
-  controller.summary = "The haptic controller: the 1 kHz simulation and its devices, serving front ends over TCP.";
+void addControllerCommand(CommandTree& tree) {
+  CommandHelp controller;
+  controller.summary =
+      "The haptic controller: the 1 kHz simulation and its devices, serving front ends over TCP.";
   controller.usage =
       "voxhap controller [SCENE --move NAME] [--listen HOST:PORT] [--token FILE] [--device script:FILE]\n"
       "       [--voxel-size LENGTH] [--point-spacing LENGTH] [--capacity N] [--duration SECONDS]\n"
@@ -92,23 +106,32 @@ Command controllerCommand() {
       "  voxhap controller --listen 127.0.0.1:0      # waits for a client's load_scene\n"
       "  voxhap controller ball-and-socket --move ball --voxel-size 0.5mm --listen 127.0.0.1:0\n"
       "  voxhap controller ball-and-socket --move ball --listen 192.168.1.20:7400 --token ~/.voxhap-token";
-  controller.options = {
-      {"move", 0, "NAME", "an object or group the controller moves (repeatable)"},
-      {"listen", 0, "HOST:PORT", "where front ends connect (default 127.0.0.1:7400)"},
-      {"token", 0, "FILE", "a token clients must present; required beyond loopback"},
-      {"device", 0, "script:FILE", "grab the first moved object with a motion script at start"},
-      {"voxel-size", 0, "LENGTH", "voxel size of the static scene (default 2.5mm, as the demo)"},
-      {"point-spacing", 0, "LENGTH", "point spacing of the moving objects (default 1mm)"},
-      kCapacityOption,
-      kVoxelMemoryOption,
-      kDeviceProfileOption,
-      {"duration", 0, "SECONDS", "stop after this much wall time (default: run until told)"},
-      {"no-realtime", 0, "", "do not try SCHED_FIFO and mlockall"},
-      kCacheDirOption,
-      kNoCacheOption,
-      {"json", 0, "", "print the summary as one JSON document on stdout"}};
-  controller.run = runControllerCommand;
-  return controller;
+  auto args = std::make_shared<ControllerArgs>();
+  CLI::App& command = tree.add(tree.root(), "controller", std::move(controller),
+                               [args](const CommandContext& c) { return runControllerCommand(*args, c); });
+  command.add_option("SCENE", args->scene,
+                     "a .gltf/.glb file or built-in scene name (default: none until a client loads one)");
+  addRepeatedOption(command, "--move", "NAME", "an object or group the controller moves (repeatable)",
+                    [&moving = args->moving](const std::string& name) { moving.push_back(name); });
+  command.add_option("--listen", args->listen, "where front ends connect (default 127.0.0.1:7400)")
+      ->type_name("HOST:PORT");
+  command.add_option("--token", args->tokenFile, "a token clients must present; required beyond loopback")
+      ->type_name("FILE");
+  command.add_option("--device", args->device, "grab the first moved object with a motion script at start")
+      ->type_name("script:FILE");
+  SimOptions& sim = args->sim;
+  addSimOptions(command, sim,
+                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::Capacity, SimOption::VoxelMemory,
+                 SimOption::DeviceProfile});
+  command.get_option("--voxel-size")
+      ->description("voxel size of the static scene (default 2.5mm, as the demo)");
+  command.get_option("--point-spacing")->description("point spacing of the moving objects (default 1mm)");
+  addParsedOption(
+      command, "--duration", "SECONDS", "stop after this much wall time (default: run until told)",
+      [&duration = args->durationS](const std::string& text) { duration = parseSeconds(text, "duration"); });
+  command.add_flag("--no-realtime", args->noRealtime, "do not try SCHED_FIFO and mlockall");
+  addSimOptions(command, sim, {SimOption::Cache});
+  command.add_flag("--json", args->json, "print the summary as one JSON document on stdout");
 }
 
 }  // namespace voxhap::cli

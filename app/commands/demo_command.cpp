@@ -5,15 +5,17 @@
 #include <iomanip>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "app/cache_options.h"
 #include "app/cli/command.h"
 #include "app/cli/number_format.h"
 #include "app/commands/commands.h"
 #include "app/exact_checks.h"
 #include "app/extraction.h"
+#include "app/extraction_options.h"
 #include "app/scene_source.h"
+#include "app/sim_options.h"
 #include "app/sim_run.h"
 
 namespace voxhap::cli {
@@ -25,34 +27,25 @@ std::string mm(double metres, int decimals = 2) {
   return s.str();
 }
 
-ExtractionOptions extractionOptionsFromArgs(const ParsedArgs& args, Console& console) {
-  ExtractionOptions options;
-  options.moving = args.value("move").value_or(kActuatorName);
-  options.model = sceneModelOptionsFromArgs(args, console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
-  if (!args.has("capacity")) options.model.sim.coherence.capacityTests = kDemoCapacityTests;
-  if (args.value("duration")) options.durationS = durationFromArgs(args, 0.0);
-  if (const auto every = args.value("penetration-every")) {
-    options.penetrationEvery = parseUnsigned(*every, "penetration-every");
-    if (options.penetrationEvery < 1) throw UsageError("--penetration-every wants at least 1 frame");
-  }
-  if (const auto spacing = args.value("probe-spacing"))
-    options.probeSpacingM = parseLengthM(*spacing, "probe-spacing");
-  return options;
-}
+/// What `voxhap demo` was given.
+struct DemoArgs {
+  ExtractionArgs extraction;
+  bool json = false;
+};
 
-int runDemo(const CommandContext& c) {
-  if (!c.args.positionals.empty()) throw UsageError("takes no arguments; use --scene SCENE");
-  const ExtractionOptions options = extractionOptionsFromArgs(c.args, c.console);
-  const std::string scriptFile = c.args.value("script").value_or(extractionScriptPath().string());
+int runDemo(const DemoArgs& args, const CommandContext& c) {
+  ExtractionOptions options =
+      extractionOptions(args.extraction, c.console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
+  if (!args.extraction.sim.capacity) options.model.sim.coherence.capacityTests = kDemoCapacityTests;
+  const std::string scriptFile = args.extraction.scriptFile();
   const MotionScript script = loadMotionScript(scriptFile);
-  const std::string sceneName = c.args.value("scene").value_or(kDefaultSceneName);
-  const Scene scene = loadScene(sceneName, kDefaultSeed, c.console);
+  const Scene scene = loadScene(args.extraction.sceneName(), kDefaultSeed, c.console);
   const ExtractionResult r = runExtraction(scene, script, options, c.console);
 
   const FrameStats& stats = r.stats;
   const std::uint64_t deadlinesMet = stats.frames() - stats.framesOverBudget;
   const bool cameOut = r.cameOut();
-  if (c.args.has("json")) {
+  if (args.json) {
     nlohmann::ordered_json j = {{"scene", scene.sourceName},
                                 {"moving", options.moving},
                                 {"script", scriptFile},
@@ -130,9 +123,8 @@ int runDemo(const CommandContext& c) {
 
 }  // namespace
 
-Command demoCommand() {
-  Command demo;
-  demo.name = "demo";
+void addDemoCommand(CommandTree& tree) {
+  CommandHelp demo;
   demo.summary = "The main job: pull the actuator out of the built-in landing gear, headless, and report.";
   demo.usage =
       "voxhap demo [--voxel-size LENGTH] [--point-spacing LENGTH] [--capacity N] [--brute-force]\n"
@@ -181,25 +173,20 @@ Command demoCommand() {
       "  voxhap demo\n"
       "  voxhap demo --voxel-size 1.25mm --point-spacing 0.7mm --json\n"
       "  voxhap demo --brute-force --duration 2";
-  demo.options = {
-      {"voxel-size", 0, "LENGTH", "voxel size of the static gear (default 2.5mm)"},
-      {"point-spacing", 0, "LENGTH", "point spacing of the actuator (default 1mm)"},
-      kCapacityOption,
-      kVoxelMemoryOption,
-      kBruteForceOption,
-      kDeviceProfileOption,
-      {"duration", 0, "SECONDS", "simulated time (default: the whole script, 18 s)"},
-      {"penetration-every", 0, "N", "measure the exact penetration every N frames (default 1)"},
-      {"probe-spacing", 0, "LENGTH",
-       "spacing of the exact penetration's surface probes (default: voxel size / 4)"},
-      {"script", 0, "FILE", "motion script of the handle (default assets/scripts/actuator-extract.txt)"},
-      {"scene", 0, "SCENE", "a .gltf/.glb file or built-in scene name (default landing-gear)"},
-      {"move", 0, "NAME", "the object or group to pull out (default actuator)"},
-      kCacheDirOption,
-      kNoCacheOption,
-      {"json", 0, "", "print one JSON summary on stdout instead of text"}};
-  demo.run = runDemo;
-  return demo;
+  auto args = std::make_shared<DemoArgs>();
+  CLI::App& command = tree.add(tree.root(), "demo", std::move(demo),
+                               [args](const CommandContext& c) { return runDemo(*args, c); });
+  SimOptions& sim = args->extraction.sim;
+  addSimOptions(command, sim,
+                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::Capacity, SimOption::VoxelMemory,
+                 SimOption::BruteForce, SimOption::DeviceProfile, SimOption::Duration});
+  command.get_option("--voxel-size")->description("voxel size of the static gear (default 2.5mm)");
+  command.get_option("--point-spacing")->description("point spacing of the actuator (default 1mm)");
+  command.get_option("--duration")->description("simulated time (default: the whole script, 18 s)");
+  command.get_option("--capacity")->description("point tests per frame (default 20000, fixed)");
+  addExtractionOptions(command, args->extraction);
+  addSimOptions(command, sim, {SimOption::Cache});
+  command.add_flag("--json", args->json, "print one JSON summary on stdout instead of text");
 }
 
 }  // namespace voxhap::cli

@@ -1,5 +1,9 @@
 #include <chrono>
 #include <filesystem>
+#include <memory>
+#include <optional>
+
+#include <CLI/CLI.hpp>
 
 #include "app/cli/command.h"
 #include "app/commands/commands.h"
@@ -12,26 +16,27 @@
 namespace voxhap::cli {
 namespace {
 
-const OptionSpec kJsonOption{"json", 0, "", "print one JSON document on stdout instead of a table"};
-const OptionSpec kSeedOption{"seed", 0, "N", "seed of a generated scene (default 1); same seed, same bytes"};
+constexpr const char* kJsonHelp = "print one JSON document on stdout instead of a table";
+constexpr const char* kSeedHelp = "seed of a generated scene (default 1); same seed, same bytes";
 
-std::uint64_t seedOf(const ParsedArgs& args) {
-  const auto seed = args.value("seed");
-  return seed ? parseUnsigned(*seed, "seed") : kDefaultSeed;
-}
+/// What `voxhap scene info` was given.
+struct InfoArgs {
+  std::string scene;
+  std::uint64_t seed = kDefaultSeed;
+  bool json = false;
+};
 
-const std::string& onePositional(const ParsedArgs& args, const char* what) {
-  if (args.positionals.size() != 1) {
-    throw UsageError(std::string("expected one ") + what + ", got " +
-                     std::to_string(args.positionals.size()));
-  }
-  return args.positionals[0];
-}
+/// What `voxhap scene generate` was given.
+struct GenerateArgs {
+  std::string name;
+  std::optional<std::string> output;
+  std::uint64_t seed = kDefaultSeed;
+  bool json = false;
+};
 
-int runInfo(const CommandContext& c) {
-  const std::string& name = onePositional(c.args, "SCENE");
-  const Scene scene = loadScene(name, seedOf(c.args), c.console);
-  if (c.args.has("json")) {
+int runInfo(const InfoArgs& args, const CommandContext& c) {
+  const Scene scene = loadScene(args.scene, args.seed, c.console);
+  if (args.json) {
     c.out << sceneSummaryJson(scene).dump(2) << "\n";
   } else {
     printSceneSummary(c.out, scene, c.console.verbosity() == Verbosity::Verbose);
@@ -39,16 +44,16 @@ int runInfo(const CommandContext& c) {
   return kExitOk;
 }
 
-int runGenerate(const CommandContext& c) {
-  const std::string& name = onePositional(c.args, "NAME");
-  const std::uint64_t seed = seedOf(c.args);
-  const std::filesystem::path file = c.args.value("output").value_or(name + ".glb");
+int runGenerate(const GenerateArgs& args, const CommandContext& c) {
+  const std::string& name = args.name;
+  const std::uint64_t seed = args.seed;
+  const std::filesystem::path file = args.output.value_or(name + ".glb");
   const auto start = std::chrono::steady_clock::now();
   const Scene scene = makeBuiltinScene(name, seed, c.console.progress("generating " + name));
   writeGlbFile(scene, file);
   const double seconds = secondsSince(start);
   const auto bytes = std::filesystem::file_size(file);
-  if (c.args.has("json")) {
+  if (args.json) {
     nlohmann::ordered_json result = {{"scene", name},
                                      {"seed", seed},
                                      {"file", file.string()},
@@ -68,9 +73,17 @@ int runGenerate(const CommandContext& c) {
 
 }  // namespace
 
-Command sceneCommand() {
-  Command info;
-  info.name = "info";
+void addSceneCommands(CommandTree& tree) {
+  CommandHelp scene;
+  scene.summary = "Inspect glTF scenes and generate the built-in ones.";
+  scene.usage = "voxhap scene COMMAND [OPTIONS]";
+  scene.description =
+      "Examples:\n"
+      "  voxhap scene info assets/peg-in-hole.glb\n"
+      "  voxhap scene generate landing-gear -o gear.glb";
+  CLI::App& group = tree.add(tree.root(), "scene", std::move(scene));
+
+  CommandHelp info;
   info.summary = "Describe a scene: objects, groups, parts, triangles, bounds, closed or not, roles.";
   info.usage = "voxhap scene info SCENE [--json] [--seed N]";
   info.description =
@@ -87,11 +100,14 @@ Command sceneCommand() {
       "  voxhap scene info assets/ball-and-socket.glb\n"
       "  voxhap scene info landing-gear --json\n"
       "  voxhap scene info -v my-assembly.gltf      # one line per part, every object of a group";
-  info.options = {kJsonOption, kSeedOption};
-  info.run = runInfo;
+  auto infoArgs = std::make_shared<InfoArgs>();
+  CLI::App& infoCommand = tree.add(group, "info", std::move(info),
+                                   [infoArgs](const CommandContext& c) { return runInfo(*infoArgs, c); });
+  infoCommand.add_option("SCENE", infoArgs->scene, "a .gltf/.glb file or built-in scene name")->required();
+  infoCommand.add_flag("--json", infoArgs->json, kJsonHelp);
+  addUnsignedOption(infoCommand, "--seed", infoArgs->seed, kSeedHelp);
 
-  Command generate;
-  generate.name = "generate";
+  CommandHelp generate;
   generate.summary = "Write a built-in scene as .glb (ball-and-socket, peg-in-hole, landing-gear).";
   generate.usage = "voxhap scene generate NAME [-o FILE] [--seed N] [--json]";
   generate.description =
@@ -102,19 +118,15 @@ Command sceneCommand() {
       "Examples:\n"
       "  voxhap scene generate landing-gear -o gear.glb\n"
       "  voxhap scene generate landing-gear --seed 7 -o gear7.glb";
-  generate.options = {{"output", 'o', "FILE", "where to write (default NAME.glb)"}, kSeedOption, kJsonOption};
-  generate.run = runGenerate;
-
-  Command scene;
-  scene.name = "scene";
-  scene.summary = "Inspect glTF scenes and generate the built-in ones.";
-  scene.usage = "voxhap scene COMMAND [OPTIONS]";
-  scene.description =
-      "Examples:\n"
-      "  voxhap scene info assets/peg-in-hole.glb\n"
-      "  voxhap scene generate landing-gear -o gear.glb";
-  scene.subcommands = {info, generate};
-  return scene;
+  auto generateArgs = std::make_shared<GenerateArgs>();
+  CLI::App& generateCommand =
+      tree.add(group, "generate", std::move(generate),
+               [generateArgs](const CommandContext& c) { return runGenerate(*generateArgs, c); });
+  generateCommand.add_option("NAME", generateArgs->name, "a built-in scene name")->required();
+  generateCommand.add_option("-o,--output", generateArgs->output, "where to write (default NAME.glb)")
+      ->type_name("FILE");
+  addUnsignedOption(generateCommand, "--seed", generateArgs->seed, kSeedHelp);
+  generateCommand.add_flag("--json", generateArgs->json, kJsonHelp);
 }
 
 }  // namespace voxhap::cli

@@ -3,13 +3,14 @@
 #include <fstream>
 #include <memory>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "app/cache_options.h"
 #include "app/cli/command.h"
 #include "app/commands/commands.h"
 #include "app/exact_checks.h"
 #include "app/scene_source.h"
+#include "app/sim_options.h"
 #include "app/sim_run.h"
 #include "haptics/core/error.h"
 #include "haptics/sim/local_simulation.h"
@@ -21,39 +22,44 @@ namespace {
 /// Voxel size of the static scene unless --voxel-size says otherwise, m.
 constexpr double kDefaultVoxelSizeM = 1e-3;
 
+/// What `voxhap simulate` was given.
+struct SimulateArgs {
+  std::string scene;
+  std::vector<std::string> moving;   ///< --move, in order
+  std::vector<std::string> scripts;  ///< --script, in order
+  SimOptions sim;
+  std::optional<std::string> trace;
+  bool checkExact = false;
+  std::optional<std::uint64_t> checkExactEvery;
+  bool json = false;
+};
+
 /// Frames between two exact checks from --check-exact and --check-exact-every; 0: none.
-std::uint64_t exactCheckEveryFromArgs(const ParsedArgs& args) {
-  if (const auto every = args.value("check-exact-every")) {
-    const std::uint64_t n = parseUnsigned(*every, "check-exact-every");
-    if (n < 1) throw UsageError("--check-exact-every wants at least 1 frame");
-    return n;
-  }
-  if (args.has("check-exact")) return 1;
-  if (args.value("probe-spacing")) throw UsageError("--probe-spacing is for --check-exact");
+std::uint64_t exactCheckEvery(const SimulateArgs& args) {
+  if (args.checkExactEvery) return *args.checkExactEvery;
+  if (args.checkExact) return 1;
+  if (args.sim.probeSpacingM) throw UsageError("--probe-spacing is for --check-exact");
   return 0;
 }
 
-int runSimulate(const CommandContext& c) {
-  if (c.args.positionals.size() != 1) throw UsageError("expected one SCENE");
-  const std::vector<std::string> moving = c.args.values("move");
+int runSimulate(const SimulateArgs& args, const CommandContext& c) {
+  const std::vector<std::string>& moving = args.moving;
   if (moving.empty()) throw UsageError("name the object to move with --move NAME");
-  const std::vector<std::string> scripts = c.args.values("script");
+  const std::vector<std::string>& scripts = args.scripts;
   if (scripts.size() != 1 && scripts.size() != moving.size()) {
     throw UsageError("give one --script for all moving objects or one per --move (" +
                      std::to_string(moving.size()) + "), not " + std::to_string(scripts.size()));
   }
-  const SceneModelOptions options = sceneModelOptionsFromArgs(c.args, c.console, kDefaultVoxelSizeM);
+  const std::uint64_t exactEvery = exactCheckEvery(args);
+  const SceneModelOptions options = sceneModelOptions(args.sim, c.console, kDefaultVoxelSizeM);
   std::vector<std::unique_ptr<ScriptedDevice>> devices;
   for (std::size_t i = 0; i < moving.size(); ++i) {
     devices.push_back(std::make_unique<ScriptedDevice>(loadMotionScript(scripts[scripts.size() == 1 ? 0 : i]),
                                                        options.sim.deviceLimits));
   }
 
-  const std::uint64_t exactEvery = exactCheckEveryFromArgs(c.args);
-  const double probeSpacingM = c.args.value("probe-spacing")
-                                   ? parseLengthM(*c.args.value("probe-spacing"), "probe-spacing")
-                                   : options.staticVoxelSizeM / kProbesPerVoxel;
-  const Scene scene = loadScene(c.args.positionals[0], kDefaultSeed, c.console);
+  const double probeSpacingM = args.sim.probeSpacingM.value_or(options.staticVoxelSizeM / kProbesPerVoxel);
+  const Scene scene = loadScene(args.scene, kDefaultSeed, c.console);
   BuiltScene built = buildScene(scene, moving, options, c.console.progress("preparing voxels"));
   const SimModel& model = built.model;
   std::unique_ptr<ExactChecks> exact;
@@ -64,13 +70,13 @@ int runSimulate(const CommandContext& c) {
 
   double scriptS = 0.0;
   for (const auto& d : devices) scriptS = std::max(scriptS, d->script().durationS());
-  const double durationS = durationFromArgs(c.args, scriptS);
+  const double durationS = args.sim.durationS.value_or(scriptS);
   const auto frames = static_cast<std::uint64_t>(std::llround(durationS / model.dtS));
 
   std::ofstream trace;
-  if (const auto file = c.args.value("trace")) {
-    trace.open(*file);
-    if (!trace) throw Error(*file + ": cannot write the trace");
+  if (args.trace) {
+    trace.open(*args.trace);
+    if (!trace) throw Error(*args.trace + ": cannot write the trace");
     trace << "frame,t_s,object,qw,qx,qy,qz,tx,ty,tz,fx,fy,fz,taux,tauy,tauz,contacts,tested,max_travel_m,"
              "compute_us\n";
   }
@@ -99,9 +105,9 @@ int runSimulate(const CommandContext& c) {
   };
   if (exact) exact->check(model, state, exactSummary);  // the poses the scene file gives, frame 0
   runFrames(sim, deviceOf, frames, stats, c.console.progress("simulating"), afterFrame);
-  if (trace.is_open() && !trace.flush()) throw Error(*c.args.value("trace") + ": writing the trace failed");
+  if (trace.is_open() && !trace.flush()) throw Error(*args.trace + ": writing the trace failed");
 
-  if (c.args.has("json")) {
+  if (args.json) {
     nlohmann::ordered_json result = {{"scene", scene.sourceName},
                                      {"moving", moving},
                                      {"voxel_size_m", options.staticVoxelSizeM},
@@ -123,9 +129,8 @@ int runSimulate(const CommandContext& c) {
 
 }  // namespace
 
-Command simulateCommand() {
-  Command simulate;
-  simulate.name = "simulate";
+void addSimulateCommand(CommandTree& tree) {
+  CommandHelp simulate;
   simulate.summary = "Run the haptic simulation headless at 1 kHz, driven by motion scripts.";
   simulate.usage = "voxhap simulate SCENE --move NAME [--move NAME2 …] --script FILE [options]";
   simulate.description =
@@ -167,30 +172,38 @@ Command simulateCommand() {
       "      --point-offset=-0.175mm --json\n"
       "  voxhap simulate peg-in-hole --move peg --script insert.txt --voxel-size 0.05mm --trace out.csv\n"
       "  voxhap simulate peg-in-hole --move peg --script insert.txt --check-exact --json";
-  simulate.options = {
-      {"move", 0, "NAME", "an object, or a group of the file (its objects as one), to move (repeatable)"},
-      {"script", 0, "FILE", "motion script: one for all moving objects or one per --move"},
-      {"voxel-size", 0, "LENGTH", "voxel size of the static scene, e.g. 0.35mm (default 1mm)"},
-      {"point-spacing", 0, "LENGTH", "point spacing of the moving objects (default: the voxel size)"},
-      {"point-offset", 0, "LENGTH", "move every point along its normal, negative inward (e.g. -0.175mm)"},
-      {"point-layer", 0, "K", "take points from the free-space layer K voxels out (0 … 8; collision offset)"},
-      {"no-awareness", 0, "", "turn geometrical awareness off (every point samples the surface field)"},
-      {"pre-contact-damping", 0, "", "damp points approaching in the layer just outside the force layer"},
-      kCapacityOption,
-      kVoxelMemoryOption,
-      kBruteForceOption,
-      kNoDriftingOption,
-      kDeviceProfileOption,
-      {"duration", 0, "SECONDS", "simulated time (default: the longest script)"},
-      {"trace", 0, "FILE.csv", "write the per-frame trace"},
-      {"check-exact", 0, "", "measure the exact penetration (Embree, both ways, faces too) at every frame"},
-      {"check-exact-every", 0, "N", "the same at frames 0, N, 2N, … and the last (implies --check-exact)"},
-      {"probe-spacing", 0, "LENGTH", "spacing of the exact check's surface probes (default: voxel size / 4)"},
-      kCacheDirOption,
-      kNoCacheOption,
-      {"json", 0, "", "print one JSON summary on stdout"}};
-  simulate.run = runSimulate;
-  return simulate;
+  auto args = std::make_shared<SimulateArgs>();
+  CLI::App& command = tree.add(tree.root(), "simulate", std::move(simulate),
+                               [args](const CommandContext& c) { return runSimulate(*args, c); });
+  command.add_option("SCENE", args->scene, "a .gltf/.glb file or built-in scene name")->required();
+  addRepeatedOption(command, "--move", "NAME",
+                    "an object, or a group of the file (its objects as one), to move (repeatable)",
+                    [&moving = args->moving](const std::string& name) { moving.push_back(name); });
+  addRepeatedOption(command, "--script", "FILE",
+                    "motion script: one for all moving objects or one per --move",
+                    [&scripts = args->scripts](const std::string& file) { scripts.push_back(file); });
+  SimOptions& sim = args->sim;
+  addSimOptions(
+      command, sim,
+      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::PointLayer,
+       SimOption::NoAwareness, SimOption::PreContactDamping, SimOption::Capacity, SimOption::VoxelMemory,
+       SimOption::BruteForce, SimOption::NoDrifting, SimOption::DeviceProfile, SimOption::Duration});
+  command.get_option("--voxel-size")
+      ->description("voxel size of the static scene, e.g. 0.35mm (default 1mm)");
+  command.get_option("--duration")->description("simulated time (default: the longest script)");
+  command.add_option("--trace", args->trace, "write the per-frame trace")->type_name("FILE.csv");
+  command.add_flag("--check-exact", args->checkExact,
+                   "measure the exact penetration (Embree, both ways, faces too) at every frame");
+  addParsedOption(command, "--check-exact-every", "N",
+                  "the same at frames 0, N, 2N, … and the last (implies --check-exact)",
+                  [&every = args->checkExactEvery](const std::string& text) {
+                    every = parseUnsigned(text, "check-exact-every");
+                    if (*every < 1) throw UsageError("--check-exact-every wants at least 1 frame");
+                  });
+  addSimOptions(command, sim, {SimOption::ProbeSpacing, SimOption::Cache});
+  command.get_option("--probe-spacing")
+      ->description("spacing of the exact check's surface probes (default: voxel size / 4)");
+  command.add_flag("--json", args->json, "print one JSON summary on stdout");
 }
 
 }  // namespace voxhap::cli

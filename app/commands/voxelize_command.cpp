@@ -1,11 +1,15 @@
+#include <memory>
+#include <optional>
+
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <sys/resource.h>
 
-#include "app/cache_options.h"
 #include "app/cli/command.h"
 #include "app/cli/number_format.h"
 #include "app/commands/commands.h"
 #include "app/scene_source.h"
+#include "app/sim_options.h"
 #include "app/voxel_slice.h"
 #include "app/voxelize_objects.h"
 #include "haptics/core/error.h"
@@ -20,17 +24,24 @@ std::uint64_t peakRssBytes() {
   return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;  // Linux reports KiB
 }
 
-VoxelizeOptions voxelizeOptionsOf(const ParsedArgs& args) {
-  const auto size = args.value("voxel-size");
-  if (!size) throw UsageError("--voxel-size is required, e.g. --voxel-size 0.35mm");
+/// What `voxhap voxelize` was given.
+struct VoxelizeArgs {
+  std::string scene;
+  std::optional<std::string> object;
+  SimOptions sim;  ///< --voxel-size, --no-awareness and the cache
+  std::uint64_t bits = 4;
+  std::optional<SliceSpec> slice;
+  std::optional<std::string> png;
+  std::uint64_t seed = kDefaultSeed;
+  bool json = false;
+};
+
+VoxelizeOptions voxelizeOptionsOf(const VoxelizeArgs& args) {
+  if (!args.sim.voxelSizeM) throw UsageError("--voxel-size is required, e.g. --voxel-size 0.35mm");
   VoxelizeOptions options;
-  options.voxelSizeM = parseLengthM(*size, "voxel-size");
-  const std::uint64_t bits = args.value("bits") ? parseUnsigned(*args.value("bits"), "bits") : 4;
-  if (bits != 2 && bits != 4 && bits != 8) {
-    throw UsageError("--bits wants 2, 4 or 8 bits per distance field, not " + std::to_string(bits));
-  }
-  options.encoding = VoxelEncoding::forBits(static_cast<int>(bits));
-  options.buildFeatureFields = !args.has("no-awareness");
+  options.voxelSizeM = *args.sim.voxelSizeM;
+  options.encoding = VoxelEncoding::forBits(static_cast<int>(args.bits));
+  options.buildFeatureFields = !args.sim.noAwareness;
   return options;
 }
 
@@ -81,20 +92,14 @@ void printTable(std::ostream& out, const std::string& objectName, const Voxelize
                    (r.cacheFile.empty() ? " (disabled)" : ", " + r.cacheFile.string()));
 }
 
-int runVoxelize(const CommandContext& c) {
-  if (c.args.positionals.size() != 1) {
-    throw UsageError("expected one SCENE, got " + std::to_string(c.args.positionals.size()));
-  }
-  const VoxelizeOptions options = voxelizeOptionsOf(c.args);
-  std::optional<SliceSpec> slice;
-  if (c.args.has("slice") != c.args.has("png")) throw UsageError("--slice and --png go together");
-  if (c.args.has("slice")) slice = parseSlice(*c.args.value("slice"));
-  const CacheOptions cache = voxelCacheOptions(c.args);
+int runVoxelize(const VoxelizeArgs& args, const CommandContext& c) {
+  const VoxelizeOptions options = voxelizeOptionsOf(args);
+  if (args.slice.has_value() != args.png.has_value()) throw UsageError("--slice and --png go together");
+  const std::optional<SliceSpec>& slice = args.slice;
+  const CacheOptions cache = voxelCacheOptions(args.sim);
 
-  const std::uint64_t seed =
-      c.args.value("seed") ? parseUnsigned(*c.args.value("seed"), "seed") : kDefaultSeed;
-  const Scene scene = loadScene(c.args.positionals[0], seed, c.console);
-  const std::optional<std::string> objectName = c.args.value("object");
+  const Scene scene = loadScene(args.scene, args.seed, c.console);
+  const std::optional<std::string>& objectName = args.object;
   const std::vector<const SceneObject*> objects = objectsToVoxelize(scene, objectName);
   const std::string shownName = objectName.value_or(kStaticObjectsName);
 
@@ -107,7 +112,7 @@ int runVoxelize(const CommandContext& c) {
 
   nlohmann::ordered_json json = resultJson(shownName, options, result);
   if (slice) {
-    const std::string png = *c.args.value("png");
+    const std::string& png = *args.png;
     const SliceLayout layout = sliceLayout(result.voxelized.voxmap, *slice);
     const RgbImage image = drawSlice(result.voxelized.voxmap, *slice, layout);
     writePng(png, image);
@@ -118,7 +123,7 @@ int runVoxelize(const CommandContext& c) {
                      {"width_px", image.width},
                      {"height_px", image.height}};
   }
-  if (c.args.has("json")) {
+  if (args.json) {
     c.out << json.dump(2) << "\n";
   } else {
     printTable(c.out, shownName, options, result);
@@ -134,9 +139,8 @@ int runVoxelize(const CommandContext& c) {
 
 }  // namespace
 
-Command voxelizeCommand() {
-  Command voxelize;
-  voxelize.name = "voxelize";
+void addVoxelizeCommand(CommandTree& tree) {
+  CommandHelp voxelize;
   voxelize.summary = "Voxelize an object or the static environment; print the paper's Table 1 figures.";
   voxelize.usage =
       "voxhap voxelize SCENE [--object NAME] --voxel-size SIZE [--bits N] [--no-awareness] [--json]\n"
@@ -161,20 +165,34 @@ Command voxelizeCommand() {
       "  voxhap voxelize landing-gear --voxel-size 1.25mm --json\n"
       "  voxhap voxelize ball-and-socket --object ball --voxel-size 0.35mm --slice z=0 --png ball.png\n"
       "  voxhap voxelize my-assembly.glb --object bracket --voxel-size 1mm --bits 8 --no-cache";
-  voxelize.options = {
-      {"object", 0, "NAME", "voxelize this object only (default: all static objects as one)"},
-      {"voxel-size", 0, "SIZE", "voxel edge, e.g. 0.35mm or 0.00035 (metres); required"},
-      {"bits", 0, "N", "bits per distance field: 2, 4 (default) or 8"},
-      {"no-awareness", 0, "", "build the surface field only (no edge and vertex fields)"},
-      {"json", 0, "", "print one JSON document on stdout instead of a table"},
-      kCacheDirOption,
-      kNoCacheOption,
-      {"slice", 0, "AXIS=COORD", "with --png: draw the fields across x, y or z at COORD"},
-      {"png", 0, "FILE", "with --slice: where to write the picture"},
-      {"seed", 0, "N", "seed of a generated scene (default 1)"},
-  };
-  voxelize.run = runVoxelize;
-  return voxelize;
+  auto args = std::make_shared<VoxelizeArgs>();
+  CLI::App& command = tree.add(tree.root(), "voxelize", std::move(voxelize),
+                               [args](const CommandContext& c) { return runVoxelize(*args, c); });
+  command.add_option("SCENE", args->scene, "a .gltf/.glb file or built-in scene name")->required();
+  command
+      .add_option("--object", args->object, "voxelize this object only (default: all static objects as one)")
+      ->type_name("NAME");
+  addSimOptions(command, args->sim, {SimOption::VoxelSize});
+  command.get_option("--voxel-size")
+      ->description("voxel edge, e.g. 0.35mm or 0.00035 (metres); required")
+      ->type_name("SIZE");
+  addParsedOption(
+      command, "--bits", "N", "bits per distance field: 2, 4 (default) or 8",
+      [&bits = args->bits](const std::string& text) {
+        bits = parseUnsigned(text, "bits");
+        if (bits != 2 && bits != 4 && bits != 8) {
+          throw UsageError("--bits wants 2, 4 or 8 bits per distance field, not " + std::to_string(bits));
+        }
+      });
+  addSimOptions(command, args->sim, {SimOption::NoAwareness});
+  command.get_option("--no-awareness")
+      ->description("build the surface field only (no edge and vertex fields)");
+  command.add_flag("--json", args->json, "print one JSON document on stdout instead of a table");
+  addSimOptions(command, args->sim, {SimOption::Cache});
+  addParsedOption(command, "--slice", "AXIS=COORD", "with --png: draw the fields across x, y or z at COORD",
+                  [&slice = args->slice](const std::string& text) { slice = parseSlice(text); });
+  command.add_option("--png", args->png, "with --slice: where to write the picture")->type_name("FILE");
+  addUnsignedOption(command, "--seed", args->seed, "seed of a generated scene (default 1)");
 }
 
 }  // namespace voxhap::cli

@@ -27,32 +27,36 @@ constexpr auto kHousekeepingPeriod = std::chrono::milliseconds(50);
 constexpr auto kLastWrites = std::chrono::seconds(2);
 
 std::string realtimeLine(const RealtimeStatus& status) {
-  std::string line = status.fifo.ok ? "haptic thread under SCHED_FIFO priority " + std::to_string(status.fifoPriority)
-                                    : "haptic thread without SCHED_FIFO (" + status.fifo.error + ")";
+  std::string line = status.fifo.ok
+                         ? "haptic thread under SCHED_FIFO priority " + std::to_string(status.fifoPriority)
+                         : "haptic thread without SCHED_FIFO (" + status.fifo.error + ")";
   line += status.memoryLock.ok ? ", memory locked" : ", memory not locked (" + status.memoryLock.error + ")";
   if (!status.fifo.ok) line += "; periods may stretch when the machine is busy";
   return line;
 }
 
-double us(std::int64_t ns) { return static_cast<double>(ns) * 1e-3; }
+double us(std::int64_t ns) {
+  return static_cast<double>(ns) * 1e-3;
+}
 
 nlohmann::ordered_json summaryJson(const PeriodSummary& s) {
-  return {{"count", s.count},       {"overruns", s.overruns}, {"p50_us", us(s.p50Ns)}, {"p99_us", us(s.p99Ns)},
-          {"p999_us", us(s.p999Ns)}, {"max_us", us(s.maxNs)}, {"mean_us", s.meanNs * 1e-3}};
+  return {{"count", s.count},          {"overruns", s.overruns},  {"p50_us", us(s.p50Ns)},
+          {"p99_us", us(s.p99Ns)},     {"p999_us", us(s.p999Ns)}, {"max_us", us(s.maxNs)},
+          {"mean_us", s.meanNs * 1e-3}};
 }
 
 void printSummary(std::ostream& out, const char* label, const PeriodSummary& s) {
   out << std::left << std::setw(17) << label << std::right << std::fixed << std::setprecision(1) << "p50 "
-      << us(s.p50Ns) << " µs, p99 " << us(s.p99Ns) << " µs, p99.9 " << us(s.p999Ns) << " µs, max " << us(s.maxNs)
-      << " µs; " << s.overruns << " over " << (label[0] == 'p' ? "1.5 ms" : "1 ms") << "\n";
+      << us(s.p50Ns) << " µs, p99 " << us(s.p99Ns) << " µs, p99.9 " << us(s.p999Ns) << " µs, max "
+      << us(s.maxNs) << " µs; " << s.overruns << " over " << (label[0] == 'p' ? "1.5 ms" : "1 ms") << "\n";
 }
 
 /// Loads `sceneName`, builds it with `moving` moving and starts its haptic loop.
 std::unique_ptr<controller::ControllerSession> loadSession(const std::string& sceneName,
                                                            const std::vector<std::string>& moving,
                                                            const SceneModelOptions& model,
-                                                           controller::HapticLoopOptions loopOptions, Console& console,
-                                                           const ProgressFn& progress) {
+                                                           controller::HapticLoopOptions loopOptions,
+                                                           Console& console, const ProgressFn& progress) {
   if (moving.empty()) throw Error("nothing to move in " + sceneName + ": name an object or group");
   auto session = std::make_unique<controller::ControllerSession>();
   const Scene scene = loadScene(sceneName, kDefaultSeed, console);
@@ -73,19 +77,21 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   const asio::ip::address address = asio::ip::make_address(options.listenHost, ec);
   if (ec) throw Error("--listen: '" + options.listenHost + "' is not an IP address");
   if (!address.is_loopback() && options.token.empty())
-    throw Error("--listen " + options.listenHost + " is beyond loopback: give a --token FILE that clients must present");
+    throw Error("--listen " + options.listenHost +
+                " is beyond loopback: give a --token FILE that clients must present");
 
   controller::HapticLoopOptions loopOptions;
   loopOptions.realtime = options.realtime;
   // what a LoadScene asks for, with this controller's options for the rest
-  const controller::SessionLoader loader = [&options, &console, loopOptions](const net::pb::LoadScene& request,
-                                                                            const ProgressFn& progress) {
-    SceneModelOptions model = options.model;
-    if (request.voxel_size_m() > 0.0) model.staticVoxelSizeM = request.voxel_size_m();
-    model.pointSpacingM = request.point_spacing_m() > 0.0 ? request.point_spacing_m() : model.staticVoxelSizeM;
-    return loadSession(request.scene(), {request.move().begin(), request.move().end()}, model, loopOptions,
-                       console, progress);
-  };
+  const controller::SessionLoader loader =
+      [&options, &console, loopOptions](const net::pb::LoadScene& request, const ProgressFn& progress) {
+        SceneModelOptions model = options.model;
+        if (request.voxel_size_m() > 0.0) model.staticVoxelSizeM = request.voxel_size_m();
+        model.pointSpacingM =
+            request.point_spacing_m() > 0.0 ? request.point_spacing_m() : model.staticVoxelSizeM;
+        return loadSession(request.scene(), {request.move().begin(), request.move().end()}, model,
+                           loopOptions, console, progress);
+      };
   std::unique_ptr<controller::ControllerSession> initial;
   if (!options.scene.empty())
     initial = loadSession(options.scene, options.moving, options.model, loopOptions, console,
@@ -125,8 +131,8 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   net::FrontendServerOptions serverOptions;
   serverOptions.token = options.token;
   try {
-    server = std::make_unique<net::FrontendServer>(io, asio::ip::tcp::endpoint(address, options.listenPort), service,
-                                                   serverOptions, log);
+    server = std::make_unique<net::FrontendServer>(io, asio::ip::tcp::endpoint(address, options.listenPort),
+                                                   service, serverOptions, log);
   } catch (const std::system_error& e) {
     throw Error("cannot listen on " + options.listenHost + ":" + std::to_string(options.listenPort) + ": " +
                 e.code().message());
@@ -199,9 +205,9 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
     out << j.dump(2) << "\n";
     return;
   }
-  out << "scene            " << sceneName << "\nstopped by       " << stopReason << " after "
-      << std::fixed << std::setprecision(1) << secondsSince(started) << " s\nframes           " << last.frame
-      << " (" << last.timeS << " s simulated)\n";
+  out << "scene            " << sceneName << "\nstopped by       " << stopReason << " after " << std::fixed
+      << std::setprecision(1) << secondsSince(started) << " s\nframes           " << last.frame << " ("
+      << last.timeS << " s simulated)\n";
   printSummary(out, "period", period);
   printSummary(out, "compute", compute);
   out << "re-syncs         " << last.resyncs << " (" << last.skippedPeriods << " periods skipped)\n"

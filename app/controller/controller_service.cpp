@@ -25,7 +25,9 @@ void toProto(const Pose& pose, pb::Pose& out) {
   out.mutable_orientation()->set_z(pose.orientation.z);
 }
 
-double seconds(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
+double seconds(std::int64_t ns) {
+  return static_cast<double>(ns) * 1e-9;
+}
 
 }  // namespace
 
@@ -76,38 +78,39 @@ void ControllerService::collectRetired() {
   while (HapticDevice* device = session_->loop->takeRetired()) devices_.erase(device);
 }
 
-void ControllerService::handle(std::uint64_t client, const pb::ClientMessage& request, pb::ServerMessage& reply) {
+void ControllerService::handle(std::uint64_t client, const pb::ClientMessage& request,
+                               pb::ServerMessage& reply) {
   collectRetired();
   switch (request.request_case()) {
-  case pb::ClientMessage::kListObjects:
-    listObjects(*reply.mutable_object_list());
-    return;
-  case pb::ClientMessage::kLoadScene:
-    load(client, request.id(), request.load_scene(), reply);
-    return;
-  case pb::ClientMessage::kGrab:
-    grab(client, request.grab(), reply);
-    return;
-  case pb::ClientMessage::kRelease:
-    release(request.release().object(), reply);
-    return;
-  case pb::ClientMessage::kSetParameters:
-    setParameters(request.set_parameters(), reply);
-    return;
-  case pb::ClientMessage::kMoveHandle:
-    moveHandle(client, request.move_handle(), reply);
-    return;
-  case pb::ClientMessage::kGetStatistics:
-    statistics(*reply.mutable_statistics());
-    return;
-  case pb::ClientMessage::kShutdown:
-    reply.mutable_done();
-    log_("shutdown asked by client " + std::to_string(client));
-    shutdown_();
-    return;
-  default:
-    fail(reply, "this controller does not serve that request yet");
-    return;
+    case pb::ClientMessage::kListObjects:
+      listObjects(*reply.mutable_object_list());
+      return;
+    case pb::ClientMessage::kLoadScene:
+      load(client, request.id(), request.load_scene(), reply);
+      return;
+    case pb::ClientMessage::kGrab:
+      grab(client, request.grab(), reply);
+      return;
+    case pb::ClientMessage::kRelease:
+      release(request.release().object(), reply);
+      return;
+    case pb::ClientMessage::kSetParameters:
+      setParameters(request.set_parameters(), reply);
+      return;
+    case pb::ClientMessage::kMoveHandle:
+      moveHandle(client, request.move_handle(), reply);
+      return;
+    case pb::ClientMessage::kGetStatistics:
+      statistics(*reply.mutable_statistics());
+      return;
+    case pb::ClientMessage::kShutdown:
+      reply.mutable_done();
+      log_("shutdown asked by client " + std::to_string(client));
+      shutdown_();
+      return;
+    default:
+      fail(reply, "this controller does not serve that request yet");
+      return;
   }
 }
 
@@ -161,7 +164,8 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
   ClientHandleDevice* clientHandle = nullptr;
   if (device.rfind("script:", 0) == 0) {
     try {
-      created = std::make_unique<ScriptedDevice>(loadMotionScript(device.substr(7)), session_->built->model.deviceLimits);
+      created = std::make_unique<ScriptedDevice>(loadMotionScript(device.substr(7)),
+                                                 session_->built->model.deviceLimits);
     } catch (const Error& e) {
       fail(reply, e.what(), "device");
       return;
@@ -220,19 +224,22 @@ void ControllerService::setParameters(const pb::SetParameters& request, pb::Serv
   reply.mutable_done();
 }
 
-void ControllerService::moveHandle(std::uint64_t client, const pb::MoveHandle& request, pb::ServerMessage& reply) {
+void ControllerService::moveHandle(std::uint64_t client, const pb::MoveHandle& request,
+                                   pb::ServerMessage& reply) {
   const int object = movingObject(request.object(), reply);
   if (object < 0) return;
   const auto i = static_cast<std::size_t>(object);
   if (heldByClient_[i] != client || clientHandles_[i] == nullptr) {
-    fail(reply, "'" + request.object() + "' is not held by this client's handle (grab it with device 'client')",
+    fail(reply,
+         "'" + request.object() + "' is not held by this client's handle (grab it with device 'client')",
          "object");
     return;
   }
   const pb::Pose& p = request.handle();
   Pose pose;
   pose.position = {p.position_m().x(), p.position_m().y(), p.position_m().z()};
-  pose.orientation = glm::dquat(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
+  pose.orientation =
+      glm::dquat(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
   const double norm = glm::length(pose.orientation);
   if (!isFinite(pose) || std::abs(norm - 1.0) > 1e-6) {
     fail(reply, "the handle pose must be finite with a unit quaternion", "handle");
@@ -343,8 +350,8 @@ void ControllerService::load(std::uint64_t client, std::uint64_t id, const pb::L
   // the reply follows when the load is done (finishLoad)
 }
 
-void ControllerService::finishLoad(std::uint64_t client, std::uint64_t id, std::unique_ptr<ControllerSession> loaded,
-                                   const std::string& error) {
+void ControllerService::finishLoad(std::uint64_t client, std::uint64_t id,
+                                   std::unique_ptr<ControllerSession> loaded, const std::string& error) {
   loading_ = false;
   pb::ServerMessage reply;
   reply.set_id(id);

@@ -19,8 +19,8 @@
 
 #include "app/controller/haptic_loop.h"
 #include "haptics/core/progress.h"
-#include "haptics/sim/scene_model.h"
 #include "haptics/runtime/latest_value.h"
+#include "haptics/sim/scene_model.h"
 #include "net/frontend/frontend_server.h"
 
 namespace voxhap::controller {
@@ -57,8 +57,8 @@ struct ControllerSession {
 /// Builds and starts a session for a LoadScene request, calling `progress` as it goes
 /// (it throws to cancel). Runs on a worker thread; throws voxhap::Error for a scene it
 /// cannot load.
-using SessionLoader =
-    std::function<std::unique_ptr<ControllerSession>(const net::pb::LoadScene& request, const ProgressFn& progress)>;
+using SessionLoader = std::function<std::unique_ptr<ControllerSession>(const net::pb::LoadScene& request,
+                                                                       const ProgressFn& progress)>;
 
 class ControllerService final : public net::FrontendHandler {
 public:
@@ -77,7 +77,8 @@ public:
   void setSender(SendFn send) { send_ = std::move(send); }
 
   void hello(net::pb::HelloReply& reply) override;
-  void handle(std::uint64_t client, const net::pb::ClientMessage& request, net::pb::ServerMessage& reply) override;
+  void handle(std::uint64_t client, const net::pb::ClientMessage& request,
+              net::pb::ServerMessage& reply) override;
   void frameUpdate(net::pb::FrameUpdate& update) override;
   void disconnected(std::uint64_t client) override;
 
@@ -101,7 +102,8 @@ private:
   void release(const std::string& name, net::pb::ServerMessage& reply);
   void setParameters(const net::pb::SetParameters& request, net::pb::ServerMessage& reply);
   void moveHandle(std::uint64_t client, const net::pb::MoveHandle& request, net::pb::ServerMessage& reply);
-  void load(std::uint64_t client, std::uint64_t id, const net::pb::LoadScene& request, net::pb::ServerMessage& reply);
+  void load(std::uint64_t client, std::uint64_t id, const net::pb::LoadScene& request,
+            net::pb::ServerMessage& reply);
   void finishLoad(std::uint64_t client, std::uint64_t id, std::unique_ptr<ControllerSession> loaded,
                   const std::string& error);
   /// Makes `session` (may be null) the one served, with no object held.
@@ -115,8 +117,8 @@ private:
   LogFn log_;
   SendFn send_;
   std::map<const HapticDevice*, std::unique_ptr<HapticDevice>> devices_;  ///< every device not yet retired
-  std::vector<std::string> heldBy_;                 ///< per moving object, as Grab named it; empty: free
-  std::vector<std::uint64_t> heldByClient_;         ///< per moving object, the client whose handle it is, 0: none
+  std::vector<std::string> heldBy_;          ///< per moving object, as Grab named it; empty: free
+  std::vector<std::uint64_t> heldByClient_;  ///< per moving object, the client whose handle it is, 0: none
   std::vector<ClientHandleDevice*> clientHandles_;  ///< per moving object, while heldByClient_
   std::uint64_t droppedCommands_ = 0;
   std::thread loadThread_;

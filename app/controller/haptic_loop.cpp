@@ -19,14 +19,23 @@ FrameSnapshot emptySnapshot(const SimModel& model) {
 
 HapticLoop::HapticLoop(const SimModel& model, SimState initial, std::shared_ptr<VoxelPager> staticPager,
                        HapticLoopOptions options)
-    : model_(model), options_(options), state_(std::move(initial)),
-      workspace_(makeSimWorkspace(model, state_, std::move(staticPager))), outputs_(makeFrameOutputs(model)),
-      grabbed_(model.objects.size()), devices_(model.objects.size(), nullptr), handles_(model.objects.size()),
+    : model_(model),
+      options_(options),
+      state_(std::move(initial)),
+      workspace_(makeSimWorkspace(model, state_, std::move(staticPager))),
+      outputs_(makeFrameOutputs(model)),
+      grabbed_(model.objects.size()),
+      devices_(model.objects.size(), nullptr),
+      handles_(model.objects.size()),
       commands_(options.commandCapacity),
       retired_(std::bit_ceil(options.commandCapacity + model.objects.size())),
-      snapshots_(emptySnapshot(model)), period_(options.periodNs * 3 / 2), compute_(options.periodNs) {}
+      snapshots_(emptySnapshot(model)),
+      period_(options.periodNs * 3 / 2),
+      compute_(options.periodNs) {}
 
-HapticLoop::~HapticLoop() { stop(); }
+HapticLoop::~HapticLoop() {
+  stop();
+}
 
 void HapticLoop::start() {
   std::promise<void> ready;
@@ -46,7 +55,9 @@ void HapticLoop::stop() {
   for (std::size_t i = 0; i < devices_.size(); ++i) retire(i);
 }
 
-bool HapticLoop::post(const LoopCommand& command) noexcept { return commands_.tryPush(command); }
+bool HapticLoop::post(const LoopCommand& command) noexcept {
+  return commands_.tryPush(command);
+}
 
 HapticDevice* HapticLoop::takeRetired() noexcept {
   HapticDevice* device = nullptr;
@@ -124,7 +135,8 @@ void HapticLoop::run() noexcept {
     FrameInputs inputs;
     inputs.now = std::chrono::steady_clock::now();
     inputs.previousStepS = lastStepS;
-    const FrameStatus status = stepWithDevices(model_, state_, workspace_, devices_, handles_, inputs, outputs_);
+    const FrameStatus status =
+        stepWithDevices(model_, state_, workspace_, devices_, handles_, inputs, outputs_);
     lastStepS = std::chrono::duration<double>(std::chrono::steady_clock::now() - inputs.now).count();
     compute_.record(monotonicTime().nowNs() - tick.beganNs);
     publish(status, frame);

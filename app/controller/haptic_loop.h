@@ -38,8 +38,8 @@ struct LoopCommand {
 
 /// One moving object in a snapshot.
 struct ObjectSnapshot {
-  Pose pose;                 ///< local → world
-  Pose handle;               ///< its handle's pose, when held
+  Pose pose;    ///< local → world
+  Pose handle;  ///< its handle's pose, when held
   bool held = false;
   glm::dvec3 forceWorld{0.0};  ///< contact force, N
   std::uint32_t contacts = 0;
@@ -49,13 +49,13 @@ struct ObjectSnapshot {
 /// What the haptic thread publishes after each frame.
 struct FrameSnapshot {
   std::uint64_t frame = 0;
-  double timeS = 0.0;  ///< simulated
+  double timeS = 0.0;                   ///< simulated
   std::vector<ObjectSnapshot> objects;  ///< one per moving object
   std::uint32_t forceLayer = 0;
   FrameStatus status = kFrameOk;
-  bool stopped = false;  ///< the haptic thread has ended (a paging failure, or stop())
-  PeriodSummary period;   ///< frame start to frame start, updated every kSummaryFrames
-  PeriodSummary compute;  ///< step and hand-overs, same
+  bool stopped = false;               ///< the haptic thread has ended (a paging failure, or stop())
+  PeriodSummary period;               ///< frame start to frame start, updated every kSummaryFrames
+  PeriodSummary compute;              ///< step and hand-overs, same
   std::uint64_t resyncs = 0;          ///< stalls after which the clock re-synced
   std::uint64_t skippedPeriods = 0;   ///< periods those stalls skipped
   std::uint64_t missedDeadlines = 0;  ///< the engine's (more contacts than its capacity)
@@ -106,7 +106,9 @@ private:
   public:
     Pose handlePose(double tS) noexcept override { return device->handlePose(tS - startS); }
     HandleVelocity handleVelocity(double tS) noexcept override { return device->handleVelocity(tS - startS); }
-    void setFeedback(const CouplingWrench& feedbackWorld) noexcept override { device->setFeedback(feedbackWorld); }
+    void setFeedback(const CouplingWrench& feedbackWorld) noexcept override {
+      device->setFeedback(feedbackWorld);
+    }
     const DeviceLimits& limits() const noexcept override { return device->limits(); }
     HapticDevice* device = nullptr;
     double startS = 0.0;

@@ -75,7 +75,8 @@ TEST_F(ControllerCommand, AClientListsSubscribesChangesTheForceLayerAndShutsItDo
   EXPECT_NE(hello.scene().find("ball-and-socket"), std::string::npos);
   EXPECT_DOUBLE_EQ(hello.frame_period_s(), 1e-3);
 
-  const pb::ServerMessage objects = client.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
+  const pb::ServerMessage objects =
+      client.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
   ASSERT_TRUE(objects.has_object_list()) << objects.DebugString();
   ASSERT_EQ(objects.object_list().objects_size(), 2);
   EXPECT_EQ(objects.object_list().objects(0).name(), "ball");
@@ -103,7 +104,8 @@ TEST_F(ControllerCommand, AClientListsSubscribesChangesTheForceLayerAndShutsItDo
   ASSERT_TRUE(refused.has_error());
   EXPECT_EQ(refused.error().field(), "force_layer");
 
-  const pb::ServerMessage stats = client.request(request([](pb::ClientMessage& m) { m.mutable_get_statistics(); }));
+  const pb::ServerMessage stats =
+      client.request(request([](pb::ClientMessage& m) { m.mutable_get_statistics(); }));
   ASSERT_TRUE(stats.has_statistics());
   EXPECT_GT(stats.statistics().frames(), 0u);
   EXPECT_GT(stats.statistics().period_max_s(), 0.0);
@@ -164,7 +166,8 @@ TEST_F(ControllerCommand, BadClientsAreClosedAndTheOthersGoOn) {
     EXPECT_GT(event->frame_update().frame(), last);
     last = event->frame_update().frame();
   }
-  const pb::ServerMessage objects = good.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
+  const pb::ServerMessage objects =
+      good.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
   ASSERT_TRUE(objects.has_object_list());
   EXPECT_EQ(objects.object_list().objects(0).held_by(), "") << "the vanished client's grab is released";
 
@@ -224,7 +227,8 @@ TEST_F(ControllerCommand, AClientLoadsASceneWithProgressAndThenSimulatesIt) {
   startWithout({});
   net::FrontendClient client = connect();
   EXPECT_EQ(client.hello("loader").scene(), "");
-  const pb::ServerMessage none = client.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
+  const pb::ServerMessage none =
+      client.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
   ASSERT_TRUE(none.has_object_list());
   EXPECT_EQ(none.object_list().objects_size(), 0);
   pb::ClientMessage grab;
@@ -272,7 +276,8 @@ TEST_F(ControllerCommand, AClientLoadsASceneWithProgressAndThenSimulatesIt) {
 }
 
 TEST_F(ControllerCommand, BeyondLoopbackItWantsAToken) {
-  const CliRun r = voxhap({"controller", asset("ball-and-socket.glb"), "--move", "ball", "--listen", "0.0.0.0:0"});
+  const CliRun r =
+      voxhap({"controller", asset("ball-and-socket.glb"), "--move", "ball", "--listen", "0.0.0.0:0"});
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.err.find("--token"), std::string::npos) << r.err;
 }

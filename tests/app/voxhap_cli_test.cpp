@@ -26,7 +26,8 @@ TEST_F(VoxhapCli, HelpListsOnlyWorkingCommandsAndExitsZero) {
   EXPECT_NE(r.out.find("demo"), std::string::npos);
   EXPECT_NE(r.out.find("simulate"), std::string::npos);
   EXPECT_NE(r.out.find("bench"), std::string::npos);
-  EXPECT_EQ(r.out.find("controller"), std::string::npos);  // not written yet
+  EXPECT_NE(r.out.find("controller"), std::string::npos);
+  EXPECT_EQ(r.out.find("peer"), std::string::npos);  // not written yet
 }
 
 TEST_F(VoxhapCli, EveryCommandHasHelp) {
@@ -34,6 +35,7 @@ TEST_F(VoxhapCli, EveryCommandHasHelp) {
                                                                 {"scene", "info", "--help"},
                                                                 {"scene", "generate", "--help"},
                                                                 {"demo", "--help"},
+                                                                {"controller", "--help"},
                                                                 {"voxelize", "--help"},
                                                                 {"simulate", "--help"},
                                                                 {"bench", "--help"},
@@ -61,6 +63,38 @@ TEST_F(VoxhapCli, UsageMistakesExitTwoWithOneLine) {
       EXPECT_EQ(r.err.rfind("voxhap: error: ", 0), 0u) << r.err;
     }
   }
+}
+
+TEST_F(VoxhapCli, UsageMistakesNameTheCommandAndTheOption) {
+  for (const auto& [args, named] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"scene", "info", "--bogus", "x"}, "voxhap scene info: unknown option '--bogus'"},
+           {{"scene", "generate", "landing-gear", "--seed", "-3"}, "voxhap scene generate: --seed wants"},
+           {{"scene", "generate", "landing-gear", "--seed"}, "voxhap scene generate: --seed"},
+           {{"scene", "info", "x", "--json=yes"}, "voxhap scene info: --json takes no value"},
+           {{"bench", "table1", "extra"}, "voxhap bench table1: takes no arguments, got 'extra'"},
+           {{"bench", "rotation", "--voxel-size", "1cm"}, "voxhap bench rotation: --voxel-size wants"},
+           {{"demo", "--capacity=0"}, "voxhap demo: --capacity wants at least one point test"}}) {
+    const CliRun r = voxhap(args);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(named), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(see --help)"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+}
+
+TEST_F(VoxhapCli, HelpComesBeforeTheValuesAreChecked) {
+  const CliRun r = voxhap({"demo", "--voxel-size", "0mm", "--help"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("Usage: voxhap demo", 0), 0u) << r.out;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST_F(VoxhapCli, GroupWithoutItsCommandPrintsItsHelpAndExitsTwo) {
+  const CliRun r = voxhap({"scene"});
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_EQ(r.out.rfind("Usage: voxhap scene", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("\n  generate "), std::string::npos) << r.out;
 }
 
 TEST_F(VoxhapCli, MissingFileExitsOneNamingIt) {

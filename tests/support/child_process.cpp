@@ -51,13 +51,15 @@ ChildProcess::~ChildProcess() {
   }
 }
 
-std::optional<std::string> ChildProcess::waitForStderr(const std::regex& pattern, std::chrono::milliseconds timeout) {
+std::optional<std::string> ChildProcess::waitForStderr(const std::regex& pattern,
+                                                       std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   for (;;) {
     const std::string text = err();
     std::smatch m;
     if (std::regex_search(text, m, pattern)) return m.size() > 1 ? m[1].str() : m[0].str();
-    if (std::chrono::steady_clock::now() >= deadline || wait(std::chrono::milliseconds(0))) return std::nullopt;
+    if (std::chrono::steady_clock::now() >= deadline || wait(std::chrono::milliseconds(0)))
+      return std::nullopt;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 }
@@ -81,7 +83,11 @@ std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {
   return status_;
 }
 
-std::string ChildProcess::out() const { return slurp(outFile_); }
-std::string ChildProcess::err() const { return slurp(errFile_); }
+std::string ChildProcess::out() const {
+  return slurp(outFile_);
+}
+std::string ChildProcess::err() const {
+  return slurp(errFile_);
+}
 
 }  // namespace voxhap::test

@@ -18,7 +18,8 @@ namespace voxhap::test {
 class ChildProcess {
 public:
   /// Starts `program` with `args` in `dir`, stdin empty, stdout and stderr to files there.
-  ChildProcess(const std::string& program, const std::vector<std::string>& args, const std::filesystem::path& dir);
+  ChildProcess(const std::string& program, const std::vector<std::string>& args,
+               const std::filesystem::path& dir);
   /// Kills it (SIGKILL) when still running.
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;

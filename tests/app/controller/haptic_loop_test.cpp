@@ -35,9 +35,11 @@ protected:
   }
 
   /// A copy of the newest snapshot once `done` holds for it, or the last one after 10 s.
-  template <class Done> FrameSnapshot waitFor(Done done) {
+  template <class Done>
+  FrameSnapshot waitFor(Done done) {
     const auto giveUp = std::chrono::steady_clock::now() + 10s;
-    while (!done(loop_->latest()) && std::chrono::steady_clock::now() < giveUp) std::this_thread::sleep_for(1ms);
+    while (!done(loop_->latest()) && std::chrono::steady_clock::now() < giveUp)
+      std::this_thread::sleep_for(1ms);
     return loop_->latest();
   }
 
@@ -96,7 +98,8 @@ TEST_F(HapticLoopTest, StopRetiresTheDevicesStillHeldAndKeepsItsStatistics) {
 TEST_F(HapticLoopTest, AFullQueueRefusesCommandsWithoutBlocking) {
   loop_->stop();  // nobody takes commands any more
   int accepted = 0;
-  for (int i = 0; i < 1000; ++i) accepted += loop_->post({LoopCommand::Kind::SetForceLayer, 0, nullptr, 4}) ? 1 : 0;
+  for (int i = 0; i < 1000; ++i)
+    accepted += loop_->post({LoopCommand::Kind::SetForceLayer, 0, nullptr, 4}) ? 1 : 0;
   EXPECT_EQ(accepted, 256);  // HapticLoopOptions::commandCapacity
 }
 
