@@ -51,13 +51,17 @@ ChildProcess::~ChildProcess() {
   }
 }
 
-std::optional<std::string> ChildProcess::waitForStderr(const std::regex& pattern,
+std::optional<std::string> ChildProcess::waitForStderr(const std::string& prefix,
                                                        std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   for (;;) {
     const std::string text = err();
-    std::smatch m;
-    if (std::regex_search(text, m, pattern)) return m.size() > 1 ? m[1].str() : m[0].str();
+    const std::size_t at = text.find(prefix);
+    if (at != std::string::npos) {
+      const std::size_t from = at + prefix.size();
+      const std::size_t end = text.find('\n', from);
+      if (end != std::string::npos) return text.substr(from, end - from);
+    }
     if (std::chrono::steady_clock::now() >= deadline || wait(std::chrono::milliseconds(0)))
       return std::nullopt;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
