@@ -108,7 +108,8 @@ void HapticLoop::publish(FrameStatus status, std::uint64_t frame) noexcept {
   s.forceLayer = state_.forceLayer;
   s.status = status;
   s.stopped = (status & kFrameStopped) != 0;
-  if (frame % kSummaryFrames == 0 || s.stopped) {
+  if (frame % kSummaryFrames == 0 || frame < kSummaryFrames ||
+      s.stopped) {  // and the first ones, so early readers see figures
     periodSummary_ = period_.summary();
     computeSummary_ = compute_.summary();
   }
