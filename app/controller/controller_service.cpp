@@ -15,10 +15,14 @@ void fail(pb::ServerMessage& reply, const std::string& message, const std::strin
   reply.mutable_error()->set_field(field);
 }
 
+void toProto(const glm::dvec3& v, pb::Vec3& out) {
+  out.set_x(v.x);
+  out.set_y(v.y);
+  out.set_z(v.z);
+}
+
 void toProto(const Pose& pose, pb::Pose& out) {
-  out.mutable_position_m()->set_x(pose.position.x);
-  out.mutable_position_m()->set_y(pose.position.y);
-  out.mutable_position_m()->set_z(pose.position.z);
+  toProto(pose.position, *out.mutable_position_m());
   out.mutable_orientation()->set_w(pose.orientation.w);
   out.mutable_orientation()->set_x(pose.orientation.x);
   out.mutable_orientation()->set_y(pose.orientation.y);
@@ -260,9 +264,7 @@ void ControllerService::frameUpdate(pb::FrameUpdate& update) {
     out.set_index(static_cast<std::uint32_t>(i));
     toProto(o.pose, *out.mutable_pose());
     if (o.held) toProto(o.handle, *out.mutable_handle());
-    out.mutable_force_n()->set_x(o.forceWorld.x);
-    out.mutable_force_n()->set_y(o.forceWorld.y);
-    out.mutable_force_n()->set_z(o.forceWorld.z);
+    toProto(o.forceWorld, *out.mutable_force_n());
     out.set_contacts(o.contacts);
     out.set_travel_share(o.travelShare);
   }

@@ -56,31 +56,26 @@ pb::ServerMessage FrontendClient::request(pb::ClientMessage request) {
   std::string frame;
   appendFrame(frame, request.SerializeAsString());
   sendRaw(frame);
-  const auto deadline = std::chrono::steady_clock::now() + timeout_;
-  for (;;) {
-    for (auto it = received_.begin(); it != received_.end(); ++it) {
-      if (it->id() == id) {
-        pb::ServerMessage reply = std::move(*it);
-        received_.erase(it);
-        return reply;
-      }
-    }
-    const auto left = std::chrono::duration_cast<Duration>(deadline - std::chrono::steady_clock::now());
-    if (left <= Duration(0) || !readMessage(left)) {
-      throw Error(open_ ? "no reply from the controller within " + std::to_string(timeout_.count()) + " ms"
-                        : "the controller closed the connection");
-    }
+  std::optional<pb::ServerMessage> reply = waitFor(id, timeout_);
+  if (!reply) {
+    throw Error(open_ ? "no reply from the controller within " + std::to_string(timeout_.count()) + " ms"
+                      : "the controller closed the connection");
   }
+  return std::move(*reply);
 }
 
 std::optional<pb::ServerMessage> FrontendClient::nextEvent(Duration timeout) {
+  return waitFor(0, timeout);
+}
+
+std::optional<pb::ServerMessage> FrontendClient::waitFor(std::uint64_t id, Duration timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   for (;;) {
     for (auto it = received_.begin(); it != received_.end(); ++it) {
-      if (it->id() == 0) {
-        pb::ServerMessage event = std::move(*it);
+      if (it->id() == id) {
+        pb::ServerMessage message = std::move(*it);
         received_.erase(it);
-        return event;
+        return message;
       }
     }
     const auto left = std::chrono::duration_cast<Duration>(deadline - std::chrono::steady_clock::now());

@@ -52,6 +52,9 @@ public:
   void setTimeout(Duration timeout) { timeout_ = timeout; }
 
 private:
+  /// Takes the first received message of `id` (0: an event), reading up to `timeout` for
+  /// it; none when it does not come or the connection is closed.
+  std::optional<pb::ServerMessage> waitFor(std::uint64_t id, Duration timeout);
   /// Reads until a message arrives, the time-out or the end; false when none came.
   bool readMessage(Duration timeout);
 
