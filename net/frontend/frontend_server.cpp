@@ -199,8 +199,15 @@ private:
       } else {
         pb::ServerMessage event;
         state_->handler.frameUpdate(*event.mutable_frame_update());
-        ++state_->counters.updatesSent;
-        send(event);
+        const std::uint64_t frame = event.frame_update().frame();
+        if (updatesSent_ > 0 && frame == lastFrameSent_) {
+          ++state_->counters.updatesUnchanged;  // the loop has not stepped since: nothing new
+        } else {
+          lastFrameSent_ = frame;
+          ++updatesSent_;
+          ++state_->counters.updatesSent;
+          send(event);
+        }
       }
       scheduleUpdate();
     });
@@ -260,6 +267,8 @@ private:
   std::uint64_t lastId_ = 0;
   asio::steady_timer updateTimer_;
   double rateHz_ = 0.0;
+  std::uint64_t updatesSent_ = 0;
+  std::uint64_t lastFrameSent_ = 0;
   std::chrono::steady_clock::time_point nextUpdate_;
 };
 
@@ -274,6 +283,10 @@ FrontendServer::FrontendServer(asio::io_context& io, const tcp::endpoint& endpoi
 FrontendServer::~FrontendServer() {
   state_->closed = true;  // no handler call from here on: the handler may be going too
   close();
+  // A session still writing stays until its write ends, which it may never do once the
+  // io_context stops: the map lets go of it, so that only its pending handlers hold it
+  // (the session holds the state; the state must not hold it back).
+  state_->sessions.clear();
 }
 
 tcp::endpoint FrontendServer::endpoint() const {

@@ -52,12 +52,13 @@ struct FrontendServerOptions {
 
 /// Counts of what the server saw, for the controller's statistics.
 struct FrontendServerCounters {
-  std::uint64_t connections = 0;     ///< accepted
-  std::uint64_t refused = 0;         ///< over maxClients
-  std::uint64_t violations = 0;      ///< connections closed for breaking the protocol
-  std::uint64_t requests = 0;        ///< requests handled
-  std::uint64_t updatesSent = 0;     ///< FrameUpdate events
-  std::uint64_t updatesSkipped = 0;  ///< FrameUpdates not sent to a client that read too slowly
+  std::uint64_t connections = 0;       ///< accepted
+  std::uint64_t refused = 0;           ///< over maxClients
+  std::uint64_t violations = 0;        ///< connections closed for breaking the protocol
+  std::uint64_t requests = 0;          ///< requests handled
+  std::uint64_t updatesSent = 0;       ///< FrameUpdate events
+  std::uint64_t updatesSkipped = 0;    ///< FrameUpdates not sent to a client that read too slowly
+  std::uint64_t updatesUnchanged = 0;  ///< FrameUpdates not sent: the frame had not advanced
 };
 
 class FrontendServer {

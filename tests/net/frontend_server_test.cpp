@@ -1,5 +1,6 @@
 #include "net/frontend/frontend_server.h"
 
+#include <atomic>
 #include <future>
 #include <thread>
 
@@ -27,9 +28,10 @@ public:
       reply.mutable_error()->set_message("not in the fake");
     }
   }
-  void frameUpdate(pb::FrameUpdate& update) override { update.set_frame(++frames); }
+  void frameUpdate(pb::FrameUpdate& update) override { update.set_frame(stepping ? ++frames : frames); }
   void disconnected(std::uint64_t) override { ++disconnections; }
   std::uint64_t frames = 0;
+  std::atomic<bool> stepping{true};  // false: the frame stands still, as in a stalled loop
   int disconnections = 0;
 };
 
@@ -192,6 +194,23 @@ TEST_F(FrontendServerTest, SubscribersGetFrameUpdatesUntilTheyStop) {
   while (client.nextEvent(0ms)) {
   }  // those sent before the stop
   EXPECT_FALSE(client.nextEvent(100ms));
+}
+
+TEST_F(FrontendServerTest, AFrameThatDidNotAdvanceIsNotSentAgain) {
+  start();
+  FrontendClient client = connect();
+  client.hello("test");
+  pb::ClientMessage subscribe;
+  subscribe.mutable_subscribe()->set_rate_hz(500.0);
+  ASSERT_TRUE(client.request(subscribe).has_done());
+  ASSERT_TRUE(client.nextEvent(5000ms));
+  handler_.stepping = false;
+  while (client.nextEvent(50ms)) {
+  }                                       // those in flight, and at most one of the standing frame
+  EXPECT_FALSE(client.nextEvent(100ms));  // 50 updates were due
+  EXPECT_GT(onServer([this] { return server_->counters().updatesUnchanged; }), 0u);
+  handler_.stepping = true;
+  EXPECT_TRUE(client.nextEvent(5000ms));
 }
 
 TEST_F(FrontendServerTest, ClientsOverTheLimitAreRefused) {
