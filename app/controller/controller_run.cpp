@@ -62,8 +62,18 @@ std::unique_ptr<controller::ControllerSession> loadSession(const std::string& sc
   const Scene scene = loadScene(sceneName, kDefaultSeed, console);
   session->sceneName = scene.sourceName;
   for (const SceneObject* o : selectObjects(scene, moving).rest) session->staticObjects.push_back(o->name);
-  session->built = std::make_unique<BuiltScene>(buildScene(scene, moving, model, progress));
+  // the voxels take most of the load; the moving objects' own surface voxmaps the rest
+  const ProgressFn voxels = [&progress](double f) {
+    if (progress) progress(0.9 * f);
+  };
+  session->built = std::make_unique<BuiltScene>(buildScene(scene, moving, model, voxels));
   const SimModel& m = session->built->model;
+  std::vector<std::string> names;
+  for (const MovingObjectModel& o : m.objects) names.push_back(o.name);
+  session->proximity = std::make_unique<controller::SessionProximity>(selectObjects(scene, names), m, model,
+                                                                      [&progress](double f) {
+                                                                        if (progress) progress(0.9 + 0.1 * f);
+                                                                      });
   loopOptions.periodNs = std::llround(m.dtS * 1e9);
   session->loop = std::make_unique<HapticLoop>(m, makeSimState(m), session->built->staticPager, loopOptions);
   session->loop->start();
@@ -201,7 +211,8 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
                                 {"protocol_violations", c.violations},
                                 {"requests", c.requests},
                                 {"updates_sent", c.updatesSent},
-                                {"updates_skipped", c.updatesSkipped}};
+                                {"updates_skipped", c.updatesSkipped},
+                                {"updates_unchanged", c.updatesUnchanged}};
     out << j.dump(2) << "\n";
     return;
   }

@@ -9,6 +9,8 @@ namespace voxhap::controller {
 namespace {
 
 namespace pb = net::pb;
+/// Farthest GetProximity lists static surface voxels, in static voxels (bounds the reply).
+constexpr int kMaxProximityVoxels = 16;
 
 void fail(pb::ServerMessage& reply, const std::string& message, const std::string& field = {}) {
   reply.mutable_error()->set_message(message);
@@ -103,6 +105,9 @@ void ControllerService::handle(std::uint64_t client, const pb::ClientMessage& re
       return;
     case pb::ClientMessage::kMoveHandle:
       moveHandle(client, request.move_handle(), reply);
+      return;
+    case pb::ClientMessage::kGetProximity:
+      proximity(request.get_proximity(), reply);
       return;
     case pb::ClientMessage::kGetStatistics:
       statistics(*reply.mutable_statistics());
@@ -251,6 +256,38 @@ void ControllerService::moveHandle(std::uint64_t client, const pb::MoveHandle& r
   }
   clientHandles_[i]->move(pose);
   reply.mutable_done();
+}
+
+void ControllerService::proximity(const pb::GetProximity& request, pb::ServerMessage& reply) {
+  const int object = movingObject(request.object(), reply);
+  if (object < 0) return;
+  const SessionProximity& proximity = *session_->proximity;
+  if (!proximity.unavailable().empty()) {
+    fail(reply, "no proximity in this session: " + proximity.unavailable());
+    return;
+  }
+  const double voxelM = session_->built->model.staticVoxmap->grid().voxelSizeM;
+  const double withinM = request.within_m();
+  if (!(withinM >= 0.0 && withinM <= kMaxProximityVoxels * voxelM)) {
+    fail(reply,
+         "within_m wants 0 to " + std::to_string(kMaxProximityVoxels) + " static voxels (" +
+             std::to_string(kMaxProximityVoxels * voxelM) + " m)",
+         "within_m");
+    return;
+  }
+  const FrameSnapshot& s = session_->loop->latest();
+  ProximityResult result;
+  proximity.measure(static_cast<std::size_t>(object), s.objects[static_cast<std::size_t>(object)].pose,
+                    withinM, result);
+  pb::Proximity& out = *reply.mutable_proximity();
+  out.set_object(request.object());
+  out.set_frame(s.frame);
+  out.set_voxel_size_m(result.staticVoxelSizeM);
+  out.mutable_vertex_distance_m()->Add(result.vertexDistanceM.begin(), result.vertexDistanceM.end());
+  out.mutable_near_voxel_centre_m()->Reserve(static_cast<int>(3 * result.nearStaticVoxelsWorld.size()));
+  for (const glm::dvec3& c : result.nearStaticVoxelsWorld) {
+    for (int k = 0; k < 3; ++k) out.add_near_voxel_centre_m(static_cast<float>(c[k]));
+  }
 }
 
 void ControllerService::frameUpdate(pb::FrameUpdate& update) {

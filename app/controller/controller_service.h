@@ -18,6 +18,7 @@
 #include <asio/io_context.hpp>
 
 #include "app/controller/haptic_loop.h"
+#include "app/controller/session_proximity.h"
 #include "haptics/core/progress.h"
 #include "haptics/runtime/latest_value.h"
 #include "haptics/sim/scene_model.h"
@@ -52,6 +53,7 @@ struct ControllerSession {
   std::vector<std::string> staticObjects;  ///< names of the static parts
   std::unique_ptr<BuiltScene> built;       ///< the model the loop reads (a stable address)
   std::unique_ptr<HapticLoop> loop;        ///< started
+  std::unique_ptr<SessionProximity> proximity;
 };
 
 /// Builds and starts a session for a LoadScene request, calling `progress` as it goes
@@ -102,6 +104,7 @@ private:
   void release(const std::string& name, net::pb::ServerMessage& reply);
   void setParameters(const net::pb::SetParameters& request, net::pb::ServerMessage& reply);
   void moveHandle(std::uint64_t client, const net::pb::MoveHandle& request, net::pb::ServerMessage& reply);
+  void proximity(const net::pb::GetProximity& request, net::pb::ServerMessage& reply);
   void load(std::uint64_t client, std::uint64_t id, const net::pb::LoadScene& request,
             net::pb::ServerMessage& reply);
   void finishLoad(std::uint64_t client, std::uint64_t id, std::unique_ptr<ControllerSession> loaded,

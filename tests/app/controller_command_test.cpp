@@ -222,6 +222,49 @@ TEST_F(ControllerCommand, AClientHandleTurnsTheBall) {
   EXPECT_EQ(finish().at("stopped_by"), "SIGINT");
 }
 
+TEST_F(ControllerCommand, ProximityOfTheSeatedBallIsSmallBelowAndFarAbove) {
+  start();
+  net::FrontendClient client = connect();
+  client.hello("colours");
+  pb::ClientMessage ask;
+  ask.mutable_get_proximity()->set_object("ball");
+  ask.mutable_get_proximity()->set_within_m(0.002);
+  const pb::ServerMessage reply = client.request(ask);
+  ASSERT_TRUE(reply.has_proximity()) << reply.DebugString();
+  const pb::Proximity& p = reply.proximity();
+  EXPECT_DOUBLE_EQ(p.voxel_size_m(), 0.001);
+  ASSERT_GT(p.vertex_distance_m_size(), 100);
+  // the ball sits in its socket: the vertices of the seated half are within a few voxels
+  // of the socket, those of the top (out of the socket) farther than that or beyond the field
+  int near = 0;
+  int far = 0;
+  for (const float d : p.vertex_distance_m()) {
+    ASSERT_GE(d, 0.0f);
+    if (d <= 0.003f) ++near;
+    if (d > 0.005f) ++far;
+  }
+  EXPECT_GT(near, p.vertex_distance_m_size() / 10);
+  EXPECT_GT(far, p.vertex_distance_m_size() / 10);
+  // the socket's surface voxels under the ball, within 2 mm of it
+  ASSERT_GT(p.near_voxel_centre_m_size(), 0);
+  EXPECT_EQ(p.near_voxel_centre_m_size() % 3, 0);
+
+  ask.mutable_get_proximity()->set_within_m(0.0);
+  EXPECT_EQ(client.request(ask).proximity().near_voxel_centre_m_size(), 0);
+  ask.mutable_get_proximity()->set_within_m(1.0);
+  const pb::ServerMessage tooFar = client.request(ask);
+  ASSERT_TRUE(tooFar.has_error());
+  EXPECT_EQ(tooFar.error().field(), "within_m");
+  ask.mutable_get_proximity()->set_object("socket");
+  ask.mutable_get_proximity()->set_within_m(0.0);
+  const pb::ServerMessage notMoving = client.request(ask);
+  ASSERT_TRUE(notMoving.has_error());
+  EXPECT_EQ(notMoving.error().field(), "object");
+
+  child_->signal(SIGTERM);
+  EXPECT_EQ(finish().at("stopped_by"), "SIGTERM");
+}
+
 TEST_F(ControllerCommand, AClientLoadsASceneWithProgressAndThenSimulatesIt) {
   startWithout({});
   net::FrontendClient client = connect();
