@@ -1,8 +1,8 @@
 #include "haptics/device/hid_transport.h"
 
-#include <hidapi/hidapi.h>
-
 #include <cwchar>
+
+#include <hidapi/hidapi.h>
 
 #include "haptics/core/error.h"
 

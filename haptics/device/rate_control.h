@@ -25,10 +25,10 @@ namespace voxhap {
 
 /// How deflection becomes velocity.
 struct RateControlParams {
-  double deadZone = 0.05;          ///< fraction of full deflection ignored, [0, 1)
-  double linearGainMPerS = 0.1;    ///< m/s at full deflection, ≥ 0
-  double angularGainRadPerS = 1.0; ///< rad/s at full deflection, ≥ 0
-  double cubicShaping = 0.0;       ///< c in [0, 1]: 0 linear, 1 cubic
+  double deadZone = 0.05;           ///< fraction of full deflection ignored, [0, 1)
+  double linearGainMPerS = 0.1;     ///< m/s at full deflection, ≥ 0
+  double angularGainRadPerS = 1.0;  ///< rad/s at full deflection, ≥ 0
+  double cubicShaping = 0.0;        ///< c in [0, 1]: 0 linear, 1 cubic
   /// Rotates view-frame vectors to the world frame (the camera's orientation).
   glm::dquat viewToWorld = identityQuat();
 };

@@ -46,7 +46,8 @@ SpaceMouseScan findSpaceMice(const std::vector<HidDeviceInfo>& devices) {
   for (const HidDeviceInfo& device : devices) {
     if (std::find(paths.begin(), paths.end(), device.path) == paths.end()) paths.push_back(device.path);
     const SpaceMouseModel* model = findSpaceMouseModel(device.vendorId, device.productId);
-    const bool multiAxis = device.usagePage == kUsagePageGenericDesktop && device.usage == kUsageMultiAxisController;
+    const bool multiAxis =
+        device.usagePage == kUsagePageGenericDesktop && device.usage == kUsageMultiAxisController;
     if (model == nullptr && !multiAxis) continue;
     const bool listed = std::any_of(scan.spaceMice.begin(), scan.spaceMice.end(),
                                     [&](const SpaceMouseInfo& info) { return info.path == device.path; });
@@ -86,12 +87,14 @@ SpaceMouseDevice::SpaceMouseDevice(const Pose& startWorld, const DeviceLimits& l
   if (chosen == nullptr) {
     std::ostringstream s;
     if (config_.path.empty()) {
-      s << "no SpaceMouse found: " << scan.hidDevicesSeen << " HID devices seen, none with usage 0x01/0x08 or "
+      s << "no SpaceMouse found: " << scan.hidDevicesSeen
+        << " HID devices seen, none with usage 0x01/0x08 or "
         << "a known id";
     } else {
       s << "no SpaceMouse at " << config_.path << ": " << scan.spaceMice.size() << " SpaceMice among "
         << scan.hidDevicesSeen << " HID devices seen";
-      for (const SpaceMouseInfo& info : scan.spaceMice) s << (&info == &scan.spaceMice.front() ? " (" : ", ") << info.path;
+      for (const SpaceMouseInfo& info : scan.spaceMice)
+        s << (&info == &scan.spaceMice.front() ? " (" : ", ") << info.path;
       if (!scan.spaceMice.empty()) s << ")";
     }
     throw Error(s.str());
@@ -146,7 +149,8 @@ void SpaceMouseDevice::handleBytes(std::span<const std::uint8_t> bytes) {
     if (bytes.size() == 7) format_.motion = SpaceMouseMotionLayout::kSeparate;
   }
   const std::uint32_t buttonsBefore = state_.buttons;
-  const SpaceMouseParseResult result = parseSpaceMouseReports(bytes, format_, config_.fullScaleCounts, state_);
+  const SpaceMouseParseResult result =
+      parseSpaceMouseReports(bytes, format_, config_.fullScaleCounts, state_);
   reportsParsed_.fetch_add(result.reports, std::memory_order_acq_rel);
   reportErrors_.fetch_add(result.errors, std::memory_order_acq_rel);
   if (result.changed == 0) return;
@@ -176,7 +180,8 @@ void SpaceMouseDevice::readerLoop() {
     } else {
       const int n = transport_->read(buffer, config_.readTimeoutMs);
       if (n > 0) {
-        handleBytes(std::span<const std::uint8_t>(buffer.data(), std::min<std::size_t>(std::size_t(n), buffer.size())));
+        handleBytes(std::span<const std::uint8_t>(buffer.data(),
+                                                  std::min<std::size_t>(std::size_t(n), buffer.size())));
       } else if (n < 0) {
         transport_->close();
         state_.deflectionView = {};

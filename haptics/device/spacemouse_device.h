@@ -38,7 +38,7 @@ struct SpaceMouseInfo {
   std::string path;  ///< e.g. /dev/hidraw3
   std::uint16_t vendorId = 0;
   std::uint16_t productId = 0;
-  std::string name;  ///< the product string, else the known model's name
+  std::string name;         ///< the product string, else the known model's name
   bool knownModel = false;  ///< in knownSpaceMouseModels (else found by its usage)
 };
 
@@ -115,7 +115,9 @@ public:
   /// Times a device was opened again after a loss.
   std::uint64_t reconnects() const noexcept { return reconnects_.load(std::memory_order_acquire); }
   /// Button events dropped because the queue was full.
-  std::uint64_t droppedButtonEvents() const noexcept { return droppedEvents_.load(std::memory_order_acquire); }
+  std::uint64_t droppedButtonEvents() const noexcept {
+    return droppedEvents_.load(std::memory_order_acquire);
+  }
 
   /// Longest integration step, s.
   static constexpr double kMaxStepS = 0.05;

@@ -90,10 +90,10 @@ enum SpaceMouseChange : std::uint8_t {
 
 /// The outcome of parsing one buffer.
 struct SpaceMouseParseResult {
-  std::uint32_t reports = 0;         ///< whole reports applied
-  std::uint32_t errors = 0;          ///< unknown ids and cut-short reports
-  std::size_t bytesDiscarded = 0;    ///< bytes not applied, from the first error on
-  std::uint8_t changed = 0;          ///< SpaceMouseChange bits whose values changed
+  std::uint32_t reports = 0;       ///< whole reports applied
+  std::uint32_t errors = 0;        ///< unknown ids and cut-short reports
+  std::size_t bytesDiscarded = 0;  ///< bytes not applied, from the first error on
+  std::uint8_t changed = 0;        ///< SpaceMouseChange bits whose values changed
 };
 
 /// Applies every whole report in `bytes` to `state`, in order, each axis as counts /

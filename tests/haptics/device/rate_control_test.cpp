@@ -105,8 +105,10 @@ TEST(RateControl, RotationStaysOnSO3OverAMillionSteps) {
   EXPECT_LT(worstNormError, 1e-14);
   // a constant axis: the whole turn is exp(ω·T) applied to the start
   const glm::dvec3 omega = control.velocityWorld().angularWorld;
-  const glm::dquat expected = quatFromRotationVector(omega * (kSteps * kDtS)) * glm::normalize(startPose().orientation);
-  const double error = glm::length(rotationVector(control.handleWorld().orientation * glm::conjugate(expected)));
+  const glm::dquat expected =
+      quatFromRotationVector(omega * (kSteps * kDtS)) * glm::normalize(startPose().orientation);
+  const double error =
+      glm::length(rotationVector(control.handleWorld().orientation * glm::conjugate(expected)));
   EXPECT_LT(error, 1e-6);
 }
 

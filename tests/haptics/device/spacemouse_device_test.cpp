@@ -52,7 +52,8 @@ public:
   }
   int read(std::span<std::uint8_t> buffer, int timeoutMs) override {
     std::unique_lock<std::mutex> lock(shared_->mutex);
-    shared_->changed.wait_for(lock, std::chrono::milliseconds(timeoutMs), [&] { return !shared_->reads.empty(); });
+    shared_->changed.wait_for(lock, std::chrono::milliseconds(timeoutMs),
+                              [&] { return !shared_->reads.empty(); });
     if (shared_->reads.empty()) return 0;
     FakeRead next = std::move(shared_->reads.front());
     shared_->reads.pop_front();
@@ -72,8 +73,8 @@ private:
 };
 
 HidDeviceInfo navigator() {
-  return HidDeviceInfo{"/dev/hidraw7", kVendorLogitech3Dconnexion, 0xc626, kUsagePageGenericDesktop,
-                       kUsageMultiAxisController, "SpaceNavigator"};
+  return HidDeviceInfo{"/dev/hidraw7",           kVendorLogitech3Dconnexion, 0xc626,
+                       kUsagePageGenericDesktop, kUsageMultiAxisController,  "SpaceNavigator"};
 }
 
 HidDeviceInfo keyboard() {
@@ -134,7 +135,8 @@ TEST_F(SpaceMouseDeviceTest, NoneFoundIsAClearError) {
     makeDevice();
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "no SpaceMouse found: 2 HID devices seen, none with usage 0x01/0x08 or a known id");
+    EXPECT_STREQ(e.what(),
+                 "no SpaceMouse found: 2 HID devices seen, none with usage 0x01/0x08 or a known id");
   }
 }
 
@@ -144,14 +146,16 @@ TEST_F(SpaceMouseDeviceTest, OpenFailureNamesTheDevice) {
     makeDevice();
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot open SpaceNavigator (046d:c626) at /dev/hidraw7: Permission denied"),
+    EXPECT_NE(std::string(e.what()).find(
+                  "cannot open SpaceNavigator (046d:c626) at /dev/hidraw7: Permission denied"),
               std::string::npos)
         << e.what();
   }
 }
 
 TEST_F(SpaceMouseDeviceTest, UnknownModelIsFoundByItsUsage) {
-  HidDeviceInfo unknown{"/dev/hidraw4", 0x1111, 0x2222, kUsagePageGenericDesktop, kUsageMultiAxisController, ""};
+  HidDeviceInfo unknown{
+      "/dev/hidraw4", 0x1111, 0x2222, kUsagePageGenericDesktop, kUsageMultiAxisController, ""};
   // hidapi lists one path per collection: the same path again with another usage
   HidDeviceInfo sameOther = unknown;
   sameOther.usage = 0x05;

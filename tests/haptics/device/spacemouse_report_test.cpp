@@ -176,7 +176,8 @@ TEST(SpaceMouseReport, KnownModelsAreFoundUnderEitherVendorId) {
   EXPECT_EQ(navigator->name, "SpaceNavigator");
   EXPECT_EQ(navigator->format.motion, SpaceMouseMotionLayout::kSeparate);
   ASSERT_NE(findSpaceMouseModel(kVendor3Dconnexion, 0xc652), nullptr);
-  EXPECT_EQ(findSpaceMouseModel(kVendor3Dconnexion, 0xc652)->format.motion, SpaceMouseMotionLayout::kCombined);
+  EXPECT_EQ(findSpaceMouseModel(kVendor3Dconnexion, 0xc652)->format.motion,
+            SpaceMouseMotionLayout::kCombined);
   EXPECT_EQ(findSpaceMouseModel(0x046e, 0xc626), nullptr);
   EXPECT_EQ(findSpaceMouseModel(kVendor3Dconnexion, 0x1234), nullptr);
   for (const SpaceMouseModel& model : knownSpaceMouseModels()) {
@@ -194,7 +195,8 @@ TEST(SpaceMouseReport, RandomBuffersAreParsedSafely) {
   std::uniform_int_distribution<int> layout(0, 2);
   for (int trial = 0; trial < 20000; ++trial) {
     std::vector<std::uint8_t> bytes(static_cast<std::size_t>(length(random)));
-    for (std::uint8_t& b : bytes) b = static_cast<std::uint8_t>(byte(random) % 5 == 0 ? byte(random) % 4 : byte(random));
+    for (std::uint8_t& b : bytes)
+      b = static_cast<std::uint8_t>(byte(random) % 5 == 0 ? byte(random) % 4 : byte(random));
     const SpaceMouseReportFormat format{static_cast<SpaceMouseMotionLayout>(layout(random)),
                                         static_cast<std::uint8_t>(1 + trial % 4)};
     SpaceMouseState state;
