@@ -16,7 +16,7 @@ packages=(
   libglm-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libembree-dev libopenmesh-dev
   libglfw3-dev libgl-dev libhidapi-dev libusb-1.0-0-dev libpng-dev libxxhash-dev
   libasio-dev libprotobuf-dev protobuf-compiler libsodium-dev
-  libgtest-dev libgmock-dev libbenchmark-dev clang-format
+  libgtest-dev libgmock-dev libbenchmark-dev clang-format umockdev
   xvfb xauth libgl1-mesa-dri
 )
 
