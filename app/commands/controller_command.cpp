@@ -61,8 +61,9 @@ int runControllerCommand(const ControllerArgs& args, const CommandContext& c) {
   if (!options.scene.empty() && options.moving.empty())
     throw UsageError("--move NAME is required with a SCENE (the object the controller moves)");
   if (options.scene.empty() && !options.moving.empty()) throw UsageError("--move wants a SCENE");
-  if (!args.device.empty() && args.device.rfind("script:", 0) != 0)
-    throw UsageError("--device wants script:FILE, not '" + args.device + "'");
+  const std::string& d = args.device;
+  if (!d.empty() && d.rfind("script:", 0) != 0 && d != "spacemouse" && d.rfind("spacemouse:", 0) != 0)
+    throw UsageError("--device wants script:FILE or spacemouse[:/dev/hidrawN], not '" + d + "'");
   if (!args.device.empty() && options.scene.empty()) throw UsageError("--device wants a SCENE");
   options.model = sceneModelOptions(args.sim, c.console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
   if (args.listen) parseListen(*args.listen, options);
@@ -82,7 +83,8 @@ void addControllerCommand(CommandTree& tree) {
   controller.summary =
       "The haptic controller: the 1 kHz simulation and its devices, serving front ends over TCP.";
   controller.usage =
-      "voxhap controller [SCENE --move NAME] [--listen HOST:PORT] [--token FILE] [--device script:FILE]\n"
+      "voxhap controller [SCENE --move NAME] [--listen HOST:PORT] [--token FILE] [--device "
+      "script:FILE|spacemouse]\n"
       "       [--voxel-size LENGTH] [--point-spacing LENGTH] [--capacity N] [--duration SECONDS]\n"
       "       [--no-realtime] [--json]";
   controller.description =
@@ -97,7 +99,10 @@ void addControllerCommand(CommandTree& tree) {
       "HOST:PORT' on stderr says where. Any address beyond loopback needs --token FILE, whose\n"
       "contents (without the final line end) every client must present in its hello.\n\n"
       "--device script:FILE grabs the first --move object with a motion script at start, as\n"
-      "`voxhap simulate` plays it; clients can grab objects too. It runs until SIGINT or\n"
+      "`voxhap simulate` plays it; --device spacemouse grabs it with the first SpaceMouse-class\n"
+      "6-DOF controller found (spacemouse:/dev/hidrawN for that one): deflection drives the\n"
+      "handle's velocity, button 1 releases the object and grabs it again; clients can grab\n"
+      "objects too. It runs until SIGINT or\n"
       "SIGTERM, a client's shutdown request, or --duration seconds of wall time, then prints\n"
       "the haptic period's p50/p99/p99.9/max and overruns (text, or one JSON document with\n"
       "--json) and exits 0.\n\n"
@@ -117,8 +122,8 @@ void addControllerCommand(CommandTree& tree) {
       ->type_name("HOST:PORT");
   command.add_option("--token", args->tokenFile, "a token clients must present; required beyond loopback")
       ->type_name("FILE");
-  command.add_option("--device", args->device, "grab the first moved object with a motion script at start")
-      ->type_name("script:FILE");
+  command.add_option("--device", args->device, "grab the first moved object at start with this device")
+      ->type_name("script:FILE|spacemouse[:PATH]");
   SimOptions& sim = args->sim;
   addSimOptions(command, sim,
                 {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::Capacity, SimOption::VoxelMemory,

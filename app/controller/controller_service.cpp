@@ -72,6 +72,7 @@ void ControllerService::stopLoop() {
 void ControllerService::replaceSession(std::unique_ptr<ControllerSession> session) {
   stopLoop();
   devices_.clear();  // every device is retired once the old loop has stopped
+  spaceMice_.clear();
   session_ = std::move(session);
   const std::size_t n = session_ ? session_->built->model.objects.size() : 0;
   heldBy_.assign(n, std::string());
@@ -179,13 +180,36 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
       fail(reply, e.what(), "device");
       return;
     }
+  } else if (device == "spacemouse" || device.rfind("spacemouse:", 0) == 0) {
+    for (std::size_t j = 0; j < heldBy_.size(); ++j) {
+      if (j != i && heldBy_[j] == device) {
+        fail(reply, device + " holds '" + session_->built->model.objects[j].name + "'; release it first",
+             "device");
+        return;
+      }
+    }
+    SpaceMouseDevice* mouse = spaceMouse(device, session_->loop->latest().objects[i].pose, reply);
+    if (mouse == nullptr) return;
+    LoopCommand command;
+    command.kind = LoopCommand::Kind::Grab;
+    command.object = static_cast<std::uint32_t>(i);
+    command.device = mouse;
+    if (!post(command, reply)) return;
+    for (StandingSpaceMouse& s : spaceMice_) {
+      if (s.mouse.get() == mouse) s.object = i;
+    }
+    heldBy_[i] = device;
+    heldByClient_[i] = 0;
+    clientHandles_[i] = nullptr;
+    reply.mutable_done();
+    return;
   } else if (device == "client") {
     auto handle = std::make_unique<ClientHandleDevice>(session_->loop->latest().objects[i].pose,
                                                        session_->built->model.deviceLimits);
     clientHandle = handle.get();
     created = std::move(handle);
   } else {
-    fail(reply, "unknown device '" + device + "' (script:PATH or client)", "device");
+    fail(reply, "unknown device '" + device + "' (script:PATH, spacemouse[:PATH] or client)", "device");
     return;
   }
   LoopCommand command;
@@ -256,6 +280,46 @@ void ControllerService::moveHandle(std::uint64_t client, const pb::MoveHandle& r
   }
   clientHandles_[i]->move(pose);
   reply.mutable_done();
+}
+
+SpaceMouseDevice* ControllerService::spaceMouse(const std::string& device, const Pose& startWorld,
+                                                pb::ServerMessage& reply) {
+  for (StandingSpaceMouse& s : spaceMice_) {
+    if (s.device == device) return s.mouse.get();
+  }
+  SpaceMouseConfig config;
+  if (device.size() > 11) config.path = device.substr(11);
+  try {
+    auto mouse = std::make_unique<SpaceMouseDevice>(startWorld, session_->built->model.deviceLimits, config);
+    log_(device + ": " + mouse->openedAtStart().name + " at " + mouse->openedAtStart().path);
+    spaceMice_.push_back({device, std::move(mouse), 0});
+  } catch (const Error& e) {
+    fail(reply, e.what(), "device");
+    return nullptr;
+  }
+  return spaceMice_.back().mouse.get();
+}
+
+void ControllerService::pollDevices() {
+  for (StandingSpaceMouse& s : spaceMice_) {
+    ButtonEvent event;
+    while (s.mouse->tryPopButtonEvent(event)) {
+      if (event.button != 1 || !event.pressed || !session_) continue;
+      const std::string& name = session_->built->model.objects[s.object].name;
+      pb::ServerMessage reply;
+      if (heldBy_[s.object] == s.device) {
+        release(name, reply);
+      } else {
+        pb::Grab grabIt;
+        grabIt.set_object(name);
+        grabIt.set_device(s.device);
+        grab(0, grabIt, reply);
+      }
+      log_(s.device + " button 1: " +
+           (reply.has_error() ? reply.error().message()
+                              : (heldBy_[s.object] == s.device ? "grabbed " : "released ") + name));
+    }
+  }
 }
 
 void ControllerService::proximity(const pb::GetProximity& request, pb::ServerMessage& reply) {

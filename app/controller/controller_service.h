@@ -20,6 +20,7 @@
 #include "app/controller/haptic_loop.h"
 #include "app/controller/session_proximity.h"
 #include "haptics/core/progress.h"
+#include "haptics/device/spacemouse_device.h"
 #include "haptics/runtime/latest_value.h"
 #include "haptics/sim/scene_model.h"
 #include "net/frontend/frontend_server.h"
@@ -87,6 +88,9 @@ public:
   /// Deletes the devices the haptic thread has let go. Called by every request; call it
   /// after the loop has stopped too.
   void collectRetired();
+  /// Takes the SpaceMice's button events: button 1 pressed grabs the object the device
+  /// last held, or releases it. Call it every few tens of milliseconds.
+  void pollDevices();
   /// Stops the haptic loop (for the summary; requests after it find no scene).
   void stopLoop();
   /// The session being simulated, or null.
@@ -112,6 +116,10 @@ private:
   /// Makes `session` (may be null) the one served, with no object held.
   void replaceSession(std::unique_ptr<ControllerSession> session);
   bool post(const LoopCommand& command, net::pb::ServerMessage& reply);
+  /// The SpaceMouse that `device` ("spacemouse" or "spacemouse:PATH") names, opened on first
+  /// use with its handle at `startWorld`; null after filling `reply` with an Error.
+  SpaceMouseDevice* spaceMouse(const std::string& device, const Pose& startWorld,
+                               net::pb::ServerMessage& reply);
 
   asio::io_context& io_;
   std::unique_ptr<ControllerSession> session_;
@@ -123,6 +131,14 @@ private:
   std::vector<std::string> heldBy_;          ///< per moving object, as Grab named it; empty: free
   std::vector<std::uint64_t> heldByClient_;  ///< per moving object, the client whose handle it is, 0: none
   std::vector<ClientHandleDevice*> clientHandles_;  ///< per moving object, while heldByClient_
+  /// A SpaceMouse stays open between grabs (its button grabs again): not in devices_, kept
+  /// until the session ends; `object` is the moving object it last grabbed.
+  struct StandingSpaceMouse {
+    std::string device;
+    std::unique_ptr<SpaceMouseDevice> mouse;
+    std::size_t object = 0;
+  };
+  std::vector<StandingSpaceMouse> spaceMice_;
   std::uint64_t droppedCommands_ = 0;
   std::thread loadThread_;
   bool loading_ = false;

@@ -87,6 +87,7 @@ void HapticLoop::apply(const LoopCommand& command) noexcept {
   if (command.kind == LoopCommand::Kind::Grab && command.device != nullptr) {
     grabbed_[command.object].device = command.device;
     grabbed_[command.object].startS = state_.timeS;
+    command.device->grabbed(objectPose(model_, state_, command.object));
     devices_[command.object] = &grabbed_[command.object];
   }
 }

@@ -22,7 +22,7 @@ namespace voxhap::controller {
 
 /// What GetProximity answers for one object at one pose.
 struct ProximityResult {
-  std::vector<float> vertexDistanceM;          ///< per vertex, in the order of vertexCount's meshes
+  std::vector<float> vertexDistanceM;             ///< per vertex, in the order of vertexCount's meshes
   std::vector<glm::dvec3> nearStaticVoxelsWorld;  ///< centres of static surface voxels near it, world
   double staticVoxelSizeM = 0.0;
 };

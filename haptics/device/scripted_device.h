@@ -40,6 +40,10 @@ public:
 
   /// What the device can render.
   virtual const DeviceLimits& limits() const noexcept = 0;
+
+  /// Haptic thread: the device has just grabbed an object at `objectWorld`; a device
+  /// whose handle is integrated (rate control) starts it there, at rest.
+  virtual void grabbed(const Pose& objectWorld) noexcept { (void)objectWorld; }
 };
 
 /// A device that plays a motion script: the handle pose at time t is the script's pose

@@ -228,6 +228,7 @@ HandleVelocity SpaceMouseDevice::handleVelocity(double tS) noexcept {
 
 void SpaceMouseDevice::resetHandle(const Pose& startWorld) noexcept {
   rate_.reset(startWorld);
+  started_ = false;  // a new grab's time starts at 0 again
 }
 
 }  // namespace voxhap

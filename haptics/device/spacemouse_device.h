@@ -96,8 +96,10 @@ public:
   void setFeedback(const CouplingWrench&) noexcept override {}
   const DeviceLimits& limits() const noexcept override { return limits_; }
 
-  /// Haptic thread: restarts the handle at `startWorld`, at rest (a new grab).
+  /// Haptic thread: restarts the handle at `startWorld`, at rest (a new grab), its clock
+  /// from the next call.
   void resetHandle(const Pose& startWorld) noexcept;
+  void grabbed(const Pose& objectWorld) noexcept override { resetHandle(objectWorld); }
 
   /// Comms thread (the one consumer): the oldest button event not taken yet; false when none.
   bool tryPopButtonEvent(ButtonEvent& out) noexcept { return buttonEvents_.tryPop(out); }

@@ -4,6 +4,7 @@
 
 #include "app/controller/haptic_loop.h"
 
+#include <atomic>
 #include <chrono>
 #include <thread>
 
@@ -54,6 +55,41 @@ protected:
   SimModel model_;
   std::unique_ptr<HapticLoop> loop_;
 };
+
+// a device that remembers where each grab found its object, as rate control starts there
+class GrabRecordingDevice final : public HapticDevice {
+public:
+  explicit GrabRecordingDevice(const DeviceLimits& limits) : limits_(limits) {}
+  Pose handlePose(double) noexcept override { return start; }
+  HandleVelocity handleVelocity(double) noexcept override { return {}; }
+  void setFeedback(const CouplingWrench&) noexcept override {}
+  const DeviceLimits& limits() const noexcept override { return limits_; }
+  void grabbed(const Pose& objectWorld) noexcept override {
+    start = objectWorld;
+    ++grabs;
+  }
+  Pose start;
+  std::atomic<int> grabs{0};
+
+private:
+  DeviceLimits limits_;
+};
+
+TEST_F(HapticLoopTest, AGrabTellsTheDeviceWhereItsObjectIs) {
+  auto press = std::make_unique<ScriptedDevice>(pressingDevice(0.005, model_));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, press.get(), 0}));
+  const FrameSnapshot moved =
+      waitFor([](const FrameSnapshot& s) { return s.objects[0].pose.position.z < -1e-4; });
+  ASSERT_LT(moved.objects[0].pose.position.z, -1e-4);
+  GrabRecordingDevice device(model_.deviceLimits);
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, &device, 0}));  // replaces the script
+  waitFor([&](const FrameSnapshot&) { return device.grabs.load() > 0; });
+  ASSERT_EQ(device.grabs.load(), 1);
+  EXPECT_LT(device.start.position.z, -1e-4);  // where the script had pushed it, not its place in the scene
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Release, 0, nullptr, 0}));
+  waitFor([](const FrameSnapshot& s) { return !s.objects[0].held; });
+  loop_->stop();
+}
 
 TEST_F(HapticLoopTest, FramesAdvanceAndAGrabbedBoxIsPressedOntoThePlate) {
   const std::uint64_t start = waitFor([](const FrameSnapshot& s) { return s.frame >= 10; }).frame;
