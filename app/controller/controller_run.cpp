@@ -171,6 +171,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   const auto started = std::chrono::steady_clock::now();
   std::function<void()> keepHouse = [&] {
     service.collectRetired();
+    service.pollDevices();
     if (service.session() && service.session()->loop->latest().stopped)
       stop("the haptic thread stopped (paging could not keep up)");
     if (options.durationS && secondsSince(started) >= *options.durationS) stop("the duration ran out");

@@ -170,8 +170,8 @@ private:
 
   void subscribe(const pb::Subscribe& request, pb::ServerMessage& reply) {
     const double rateHz = request.rate_hz();
-    if (!(rateHz >= 0.0 && rateHz <= 1000.0)) {
-      reply.mutable_error()->set_message("rate_hz wants 0 (stop) to 1000 Hz");
+    if (!(rateHz == 0.0 || (rateHz >= 1.0 && rateHz <= 1000.0))) {
+      reply.mutable_error()->set_message("rate_hz wants 1 to 1000 Hz, or 0 to stop");
       reply.mutable_error()->set_field("rate_hz");
       return;
     }
