@@ -114,14 +114,9 @@ ExactChecks::ExactChecks(const Scene& scene, const SimModel& model, const SceneM
       bodies[i].voxmapLocal = &own;
       continue;
     }
-    VoxelizeOptions voxelOptions;
-    voxelOptions.voxelSizeM = options.pointSpacingM;
-    voxelOptions.encoding = VoxelEncoding::forBits(options.bitsPerField);
-    voxelOptions.buildFeatureFields = false;  // only the surface field filters
-    const SceneObject* one[] = {moving[i]};
     ProgressFn stage;
     if (progress) stage = [&progress, i, steps](double f) { progress((static_cast<double>(i) + f) / steps); };
-    ownVoxmaps_.push_back(std::make_unique<Voxmap>(options.voxelizeFn(one, voxelOptions, stage)));
+    ownVoxmaps_.push_back(std::make_unique<Voxmap>(movingSurfaceVoxmap(*moving[i], options, stage)));
     bodies[i].voxmapLocal = ownVoxmaps_.back().get();
   }
 

@@ -1,6 +1,7 @@
 #include "app/controller/controller_service.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "haptics/core/error.h"
 #include "haptics/device/motion_script.h"
@@ -11,6 +12,9 @@ namespace {
 namespace pb = net::pb;
 /// Farthest GetProximity lists static surface voxels, in static voxels (bounds the reply).
 constexpr int kMaxProximityVoxels = 16;
+/// Grab's device for the first SpaceMouse found, and the prefix that names one by path.
+constexpr const char* kSpaceMouse = "spacemouse";
+constexpr const char* kSpaceMousePrefix = "spacemouse:";
 
 void fail(pb::ServerMessage& reply, const std::string& message, const std::string& field = {}) {
   reply.mutable_error()->set_message(message);
@@ -170,8 +174,10 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
   if (object < 0) return;
   const auto i = static_cast<std::size_t>(object);
   const std::string& device = request.device();
-  std::unique_ptr<HapticDevice> created;
+  std::unique_ptr<HapticDevice> created;  // null for a SpaceMouse, which stays open between grabs
+  HapticDevice* holder = nullptr;
   ClientHandleDevice* clientHandle = nullptr;
+  StandingSpaceMouse* mouse = nullptr;
   if (device.rfind("script:", 0) == 0) {
     try {
       created = std::make_unique<ScriptedDevice>(loadMotionScript(device.substr(7)),
@@ -180,7 +186,7 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
       fail(reply, e.what(), "device");
       return;
     }
-  } else if (device == "spacemouse" || device.rfind("spacemouse:", 0) == 0) {
+  } else if (device == kSpaceMouse || device.rfind(kSpaceMousePrefix, 0) == 0) {
     for (std::size_t j = 0; j < heldBy_.size(); ++j) {
       if (j != i && heldBy_[j] == device) {
         fail(reply, device + " holds '" + session_->built->model.objects[j].name + "'; release it first",
@@ -188,21 +194,9 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
         return;
       }
     }
-    SpaceMouseDevice* mouse = spaceMouse(device, session_->loop->latest().objects[i].pose, reply);
+    mouse = spaceMouse(device, session_->loop->latest().objects[i].pose, reply);
     if (mouse == nullptr) return;
-    LoopCommand command;
-    command.kind = LoopCommand::Kind::Grab;
-    command.object = static_cast<std::uint32_t>(i);
-    command.device = mouse;
-    if (!post(command, reply)) return;
-    for (StandingSpaceMouse& s : spaceMice_) {
-      if (s.mouse.get() == mouse) s.object = i;
-    }
-    heldBy_[i] = device;
-    heldByClient_[i] = 0;
-    clientHandles_[i] = nullptr;
-    reply.mutable_done();
-    return;
+    holder = mouse->mouse.get();
   } else if (device == "client") {
     auto handle = std::make_unique<ClientHandleDevice>(session_->loop->latest().objects[i].pose,
                                                        session_->built->model.deviceLimits);
@@ -212,12 +206,14 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
     fail(reply, "unknown device '" + device + "' (script:PATH, spacemouse[:PATH] or client)", "device");
     return;
   }
+  if (created) holder = created.get();
   LoopCommand command;
   command.kind = LoopCommand::Kind::Grab;
   command.object = static_cast<std::uint32_t>(i);
-  command.device = created.get();
+  command.device = holder;
   if (!post(command, reply)) return;
-  devices_.emplace(created.get(), std::move(created));
+  if (created) devices_.emplace(holder, std::move(created));
+  if (mouse) mouse->object = i;
   heldBy_[i] = device;
   heldByClient_[i] = clientHandle ? client : 0;
   clientHandles_[i] = clientHandle;
@@ -282,13 +278,14 @@ void ControllerService::moveHandle(std::uint64_t client, const pb::MoveHandle& r
   reply.mutable_done();
 }
 
-SpaceMouseDevice* ControllerService::spaceMouse(const std::string& device, const Pose& startWorld,
-                                                pb::ServerMessage& reply) {
+ControllerService::StandingSpaceMouse* ControllerService::spaceMouse(const std::string& device,
+                                                                     const Pose& startWorld,
+                                                                     pb::ServerMessage& reply) {
   for (StandingSpaceMouse& s : spaceMice_) {
-    if (s.device == device) return s.mouse.get();
+    if (s.device == device) return &s;
   }
   SpaceMouseConfig config;
-  if (device.size() > 11) config.path = device.substr(11);
+  if (device != kSpaceMouse) config.path = device.substr(std::strlen(kSpaceMousePrefix));
   try {
     auto mouse = std::make_unique<SpaceMouseDevice>(startWorld, session_->built->model.deviceLimits, config);
     log_(device + ": " + mouse->openedAtStart().name + " at " + mouse->openedAtStart().path);
@@ -297,7 +294,7 @@ SpaceMouseDevice* ControllerService::spaceMouse(const std::string& device, const
     fail(reply, e.what(), "device");
     return nullptr;
   }
-  return spaceMice_.back().mouse.get();
+  return &spaceMice_.back();
 }
 
 void ControllerService::pollDevices() {
@@ -306,8 +303,9 @@ void ControllerService::pollDevices() {
     while (s.mouse->tryPopButtonEvent(event)) {
       if (event.button != 1 || !event.pressed || !session_) continue;
       const std::string& name = session_->built->model.objects[s.object].name;
+      const bool held = heldBy_[s.object] == s.device;
       pb::ServerMessage reply;
-      if (heldBy_[s.object] == s.device) {
+      if (held) {
         release(name, reply);
       } else {
         pb::Grab grabIt;
@@ -316,8 +314,7 @@ void ControllerService::pollDevices() {
         grab(0, grabIt, reply);
       }
       log_(s.device + " button 1: " +
-           (reply.has_error() ? reply.error().message()
-                              : (heldBy_[s.object] == s.device ? "grabbed " : "released ") + name));
+           (reply.has_error() ? reply.error().message() : (held ? "released " : "grabbed ") + name));
     }
   }
 }

@@ -116,11 +116,6 @@ private:
   /// Makes `session` (may be null) the one served, with no object held.
   void replaceSession(std::unique_ptr<ControllerSession> session);
   bool post(const LoopCommand& command, net::pb::ServerMessage& reply);
-  /// The SpaceMouse that `device` ("spacemouse" or "spacemouse:PATH") names, opened on first
-  /// use with its handle at `startWorld`; null after filling `reply` with an Error.
-  SpaceMouseDevice* spaceMouse(const std::string& device, const Pose& startWorld,
-                               net::pb::ServerMessage& reply);
-
   asio::io_context& io_;
   std::unique_ptr<ControllerSession> session_;
   SessionLoader loader_;
@@ -139,6 +134,10 @@ private:
     std::size_t object = 0;
   };
   std::vector<StandingSpaceMouse> spaceMice_;
+  /// The SpaceMouse that `device` ("spacemouse" or "spacemouse:PATH") names, opened on first
+  /// use with its handle at `startWorld`; null after filling `reply` with an Error.
+  StandingSpaceMouse* spaceMouse(const std::string& device, const Pose& startWorld,
+                                 net::pb::ServerMessage& reply);
   std::uint64_t droppedCommands_ = 0;
   std::thread loadThread_;
   bool loading_ = false;

@@ -27,18 +27,14 @@ SessionProximity::SessionProximity(const ObjectSelection& selection, const SimMo
       continue;
     }
     if (!unavailable_.empty()) continue;
-    VoxelizeOptions voxelOptions;
-    voxelOptions.voxelSizeM = options.pointSpacingM;
-    voxelOptions.encoding = VoxelEncoding::forBits(options.bitsPerField);
-    voxelOptions.buildFeatureFields = false;  // only its surface field is read
-    const SceneObject* one[] = {selection.picked[i]};
     ProgressFn stage;
     if (progress) {
       stage = [&progress, i, n](double f) {
         progress((static_cast<double>(i) + f) / static_cast<double>(n));
       };
     }
-    ownVoxmaps_.push_back(std::make_unique<Voxmap>(options.voxelizeFn(one, voxelOptions, stage)));
+    ownVoxmaps_.push_back(
+        std::make_unique<Voxmap>(movingSurfaceVoxmap(*selection.picked[i], options, stage)));
     movingVoxmaps_[i] = ownVoxmaps_.back().get();
   }
   if (progress) progress(1.0);

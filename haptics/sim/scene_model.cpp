@@ -79,4 +79,14 @@ SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& mov
   return std::move(built.model);
 }
 
+Voxmap movingSurfaceVoxmap(const SceneObject& object, const SceneModelOptions& options,
+                           const ProgressFn& progress) {
+  VoxelizeOptions voxelOptions;
+  voxelOptions.voxelSizeM = options.pointSpacingM;
+  voxelOptions.encoding = VoxelEncoding::forBits(options.bitsPerField);
+  voxelOptions.buildFeatureFields = false;  // only the surface field is read
+  const SceneObject* one[] = {&object};
+  return options.voxelizeFn(one, voxelOptions, progress);
+}
+
 }  // namespace voxhap

@@ -70,4 +70,10 @@ BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& moving
 SimModel buildSceneModel(const Scene& scene, const std::vector<std::string>& movingNames,
                          const SceneModelOptions& options, const ProgressFn& progress = {});
 
+/// The surface voxmap of moving object `object` alone, local frame, at options.pointSpacingM
+/// through options.voxelizeFn (so its cache), without feature fields: what a moving object
+/// that is no pair's voxmap needs for proximity and exact checks.
+Voxmap movingSurfaceVoxmap(const SceneObject& object, const SceneModelOptions& options,
+                           const ProgressFn& progress = {});
+
 }  // namespace voxhap

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <deque>
 #include <map>
+#include <optional>
 
 #include <asio/steady_timer.hpp>
 #include <asio/write.hpp>
@@ -200,11 +201,10 @@ private:
         pb::ServerMessage event;
         state_->handler.frameUpdate(*event.mutable_frame_update());
         const std::uint64_t frame = event.frame_update().frame();
-        if (updatesSent_ > 0 && frame == lastFrameSent_) {
+        if (lastFrameSent_ == frame) {
           ++state_->counters.updatesUnchanged;  // the loop has not stepped since: nothing new
         } else {
           lastFrameSent_ = frame;
-          ++updatesSent_;
           ++state_->counters.updatesSent;
           send(event);
         }
@@ -267,8 +267,7 @@ private:
   std::uint64_t lastId_ = 0;
   asio::steady_timer updateTimer_;
   double rateHz_ = 0.0;
-  std::uint64_t updatesSent_ = 0;
-  std::uint64_t lastFrameSent_ = 0;
+  std::optional<std::uint64_t> lastFrameSent_;  ///< none before the first update
   std::chrono::steady_clock::time_point nextUpdate_;
 };
 
