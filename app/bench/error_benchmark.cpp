@@ -227,7 +227,7 @@ double signedGapM(const Scene& scene, const SceneObject& moving, const Pose& pos
 /// The upper rod's handle: from the start down to the exact touching pose in kRodLowerS, then held.
 HandleInput rodHandleAt(double tS, double startGapM) {
   const double f = std::min(tS / kRodLowerS, 1.0);
-  HandleInput h{{glm::dvec3(0.0, 0.0, -startGapM * f), identityQuat()}, {}};
+  HandleInput h{{glm::dvec3(0.0, 0.0, -startGapM * f), identityQuat()}, {}, true};
   if (tS < kRodLowerS) h.velocity.linearWorld = glm::dvec3(0.0, 0.0, -startGapM / kRodLowerS);
   return h;
 }

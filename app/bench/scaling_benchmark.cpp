@@ -139,7 +139,7 @@ Pose handlePoseAt(double tS) {
 HandleInput handleAt(double tS) {
   constexpr double h = 1e-5;
   const Pose before = handlePoseAt(tS - h), after = handlePoseAt(tS + h);
-  HandleInput input{handlePoseAt(tS), {}};
+  HandleInput input{handlePoseAt(tS), {}, true};
   input.velocity.linearWorld = (after.position - before.position) / (2.0 * h);
   input.velocity.angularWorld =
       rotationVector(after.orientation * glm::conjugate(before.orientation)) / (2.0 * h);

@@ -51,16 +51,20 @@ void printSummary(std::ostream& out, const char* label, const PeriodSummary& s) 
       << us(s.maxNs) << " µs; " << s.overruns << " over " << (label[0] == 'p' ? "1.5 ms" : "1 ms") << "\n";
 }
 
-/// Loads `sceneName`, builds it with `moving` moving and starts its haptic loop.
-std::unique_ptr<controller::ControllerSession> loadSession(const std::string& sceneName,
-                                                           const std::vector<std::string>& moving,
-                                                           const SceneModelOptions& model,
-                                                           controller::HapticLoopOptions loopOptions,
-                                                           Console& console, const ProgressFn& progress) {
-  if (moving.empty()) throw Error("nothing to move in " + sceneName + ": name an object or group");
+/// Loads the scene `source` names and builds it with `model` (the sizes and offset already
+/// taken from `source`), all but its haptic loop.
+std::unique_ptr<controller::ControllerSession> loadSession(const net::pb::LoadScene& source,
+                                                           const SceneModelOptions& model, Console& console,
+                                                           const ProgressFn& progress) {
+  const std::vector<std::string> moving(source.move().begin(), source.move().end());
+  if (moving.empty()) throw Error("nothing to move in " + source.scene() + ": name an object or group");
   auto session = std::make_unique<controller::ControllerSession>();
-  const Scene scene = loadScene(sceneName, kDefaultSeed, console);
+  session->source = source;
+  const Scene scene = loadScene(source.scene(), kDefaultSeed, console);
   session->sceneName = scene.sourceName;
+  session->voxelSizeM = model.staticVoxelSizeM;
+  session->pointSpacingM = model.pointSpacingM;
+  session->pointOffsetM = model.pointDisplacementM;
   for (const SceneObject* o : selectObjects(scene, moving).rest) session->staticObjects.push_back(o->name);
   // the voxels take most of the load; the moving objects' own surface voxmaps the rest
   const ProgressFn voxels = [&progress](double f) {
@@ -74,9 +78,6 @@ std::unique_ptr<controller::ControllerSession> loadSession(const std::string& sc
                                                                       [&progress](double f) {
                                                                         if (progress) progress(0.9 + 0.1 * f);
                                                                       });
-  loopOptions.periodNs = std::llround(m.dtS * 1e9);
-  session->loop = std::make_unique<HapticLoop>(m, makeSimState(m), session->built->staticPager, loopOptions);
-  session->loop->start();
   return session;
 }
 
@@ -93,19 +94,25 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   controller::HapticLoopOptions loopOptions;
   loopOptions.realtime = options.realtime;
   // what a LoadScene asks for, with this controller's options for the rest
-  const controller::SessionLoader loader =
-      [&options, &console, loopOptions](const net::pb::LoadScene& request, const ProgressFn& progress) {
-        SceneModelOptions model = options.model;
-        if (request.voxel_size_m() > 0.0) model.staticVoxelSizeM = request.voxel_size_m();
-        model.pointSpacingM =
-            request.point_spacing_m() > 0.0 ? request.point_spacing_m() : model.staticVoxelSizeM;
-        return loadSession(request.scene(), {request.move().begin(), request.move().end()}, model,
-                           loopOptions, console, progress);
-      };
+  const controller::SessionLoader loader = [&options, &console](const net::pb::LoadScene& request,
+                                                                const ProgressFn& progress) {
+    SceneModelOptions model = options.model;
+    if (request.voxel_size_m() > 0.0) model.staticVoxelSizeM = request.voxel_size_m();
+    model.pointSpacingM =
+        request.point_spacing_m() > 0.0 ? request.point_spacing_m() : model.staticVoxelSizeM;
+    if (request.has_point_offset_m()) model.pointDisplacementM = request.point_offset_m();
+    return loadSession(request, model, console, progress);
+  };
   std::unique_ptr<controller::ControllerSession> initial;
-  if (!options.scene.empty())
-    initial = loadSession(options.scene, options.moving, options.model, loopOptions, console,
-                          console.progress("preparing voxels"));
+  if (!options.scene.empty()) {
+    net::pb::LoadScene source;
+    source.set_scene(options.scene);
+    for (const std::string& name : options.moving) source.add_move(name);
+    // a point spacing equal to the voxel size follows it when a client changes the voxel size
+    if (options.model.pointSpacingM != options.model.staticVoxelSizeM)
+      source.set_point_spacing_m(options.model.pointSpacingM);
+    initial = loadSession(source, options.model, console, console.progress("preparing voxels"));
+  }
 
   asio::io_context io;
   asio::signal_set signals(io, SIGINT, SIGTERM);
@@ -137,7 +144,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   };
   const auto log = [&console](const std::string& line) { console.info(line); };
   ControllerService service(
-      io, std::move(initial), loader, [&] { stop("a client asked it to shut down"); }, log);
+      io, std::move(initial), loader, loopOptions, [&] { stop("a client asked it to shut down"); }, log);
   net::FrontendServerOptions serverOptions;
   serverOptions.token = options.token;
   try {

@@ -35,6 +35,22 @@ void toProto(const Pose& pose, pb::Pose& out) {
   out.mutable_orientation()->set_z(pose.orientation.z);
 }
 
+/// False after filling `reply` with an Error naming the size or offset out of range.
+bool sizesInRange(const pb::LoadScene& request, pb::ServerMessage& reply) {
+  for (const auto& [field, value] : {std::pair{"voxel_size_m", request.voxel_size_m()},
+                                     std::pair{"point_spacing_m", request.point_spacing_m()}}) {
+    if (!(value >= 0.0 && value <= 1.0)) {
+      fail(reply, std::string(field) + " wants 0 (the default) or a length up to 1 m", field);
+      return false;
+    }
+  }
+  if (!(std::abs(request.point_offset_m()) <= 1.0)) {
+    fail(reply, "point_offset_m wants a length of at most 1 m either way", "point_offset_m");
+    return false;
+  }
+  return true;
+}
+
 double seconds(std::int64_t ns) {
   return static_cast<double>(ns) * 1e-9;
 }
@@ -50,8 +66,13 @@ Pose ClientHandleDevice::handlePose(double) noexcept {
 }
 
 ControllerService::ControllerService(asio::io_context& io, std::unique_ptr<ControllerSession> session,
-                                     SessionLoader loader, std::function<void()> shutdown, LogFn log)
-    : io_(io), loader_(std::move(loader)), shutdown_(std::move(shutdown)), log_(std::move(log)) {
+                                     SessionLoader loader, HapticLoopOptions loopOptions,
+                                     std::function<void()> shutdown, LogFn log)
+    : io_(io),
+      loader_(std::move(loader)),
+      shutdown_(std::move(shutdown)),
+      log_(std::move(log)),
+      loopOptions_(loopOptions) {
   replaceSession(std::move(session));
 }
 
@@ -73,7 +94,8 @@ void ControllerService::stopLoop() {
   collectRetired();
 }
 
-void ControllerService::replaceSession(std::unique_ptr<ControllerSession> session) {
+void ControllerService::replaceSession(std::unique_ptr<ControllerSession> session,
+                                       std::optional<SimState> start) {
   stopLoop();
   devices_.clear();  // every device is retired once the old loop has stopped
   spaceMice_.clear();
@@ -82,6 +104,34 @@ void ControllerService::replaceSession(std::unique_ptr<ControllerSession> sessio
   heldBy_.assign(n, std::string());
   heldByClient_.assign(n, 0);
   clientHandles_.assign(n, nullptr);
+  if (!session_) return;
+  const SimModel& model = session_->built->model;
+  SimState state = start ? std::move(*start) : makeSimState(model);
+  forceLayer_ = state.forceLayer;
+  HapticLoopOptions options = loopOptions_;
+  options.periodNs = std::llround(model.dtS * 1e9);
+  session_->loop =
+      std::make_unique<HapticLoop>(model, std::move(state), session_->built->staticPager, options);
+  session_->loop->start();
+  const std::vector<CouplingGains> gains = couplingGains();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!model.objects[i].coupled) continue;
+    LoopCommand command;
+    command.kind = LoopCommand::Kind::SetCouplingGains;
+    command.object = static_cast<std::uint32_t>(i);
+    command.gains = gains[i];
+    // the loop has not run a frame yet: its queue is empty and holds kCommandCapacity
+    [[maybe_unused]] const bool queued = session_->loop->post(command);
+  }
+}
+
+std::vector<CouplingGains> ControllerService::couplingGains() const {
+  std::vector<CouplingGains> gains;
+  for (const MovingObjectModel& o : session_->built->model.objects)
+    gains.push_back(o.coupled
+                        ? scaledCouplingGains(o.gains, o.body, couplingStiffnessShare_, couplingDampingRatio_)
+                        : CouplingGains{});
+  return gains;
 }
 
 void ControllerService::collectRetired() {
@@ -97,7 +147,7 @@ void ControllerService::handle(std::uint64_t client, const pb::ClientMessage& re
       listObjects(*reply.mutable_object_list());
       return;
     case pb::ClientMessage::kLoadScene:
-      load(client, request.id(), request.load_scene(), reply);
+      load(client, request.id(), request.load_scene(), LoadKind{}, reply);
       return;
     case pb::ClientMessage::kGrab:
       grab(client, request.grab(), reply);
@@ -106,7 +156,7 @@ void ControllerService::handle(std::uint64_t client, const pb::ClientMessage& re
       release(request.release().object(), reply);
       return;
     case pb::ClientMessage::kSetParameters:
-      setParameters(request.set_parameters(), reply);
+      setParameters(client, request.id(), request.set_parameters(), reply);
       return;
     case pb::ClientMessage::kMoveHandle:
       moveHandle(client, request.move_handle(), reply);
@@ -233,24 +283,100 @@ void ControllerService::release(const std::string& name, pb::ServerMessage& repl
   reply.mutable_done();
 }
 
-void ControllerService::setParameters(const pb::SetParameters& request, pb::ServerMessage& reply) {
+void ControllerService::setParameters(std::uint64_t client, std::uint64_t id,
+                                      const pb::SetParameters& request, pb::ServerMessage& reply) {
   if (!session_) {
     fail(reply, "no scene is loaded (load_scene first)");
     return;
   }
+  const SimModel& model = session_->built->model;
+  // check every field before anything changes
   if (request.has_force_layer()) {
     const std::uint32_t value = request.force_layer();
-    if (value > 255 || !session_->built->model.forceLayerInRange(static_cast<std::uint8_t>(value))) {
-      fail(reply, "force_layer " + std::to_string(value) + " is not a value every pair's voxmap renders",
+    if (value > 255 || !model.forceLayerInRange(static_cast<std::uint8_t>(value))) {
+      fail(reply,
+           "force_layer " + std::to_string(value) + " is outside 1 to " +
+               std::to_string(model.maxForceLayer()) + " (the values every pair's voxmap renders)",
            "force_layer");
       return;
     }
+  }
+  const double share =
+      request.has_coupling_stiffness_share() ? request.coupling_stiffness_share() : couplingStiffnessShare_;
+  if (!(share > 0.0 && share <= 1.0)) {
+    fail(reply, "coupling_stiffness_share wants a share above 0 and at most 1", "coupling_stiffness_share");
+    return;
+  }
+  const double ratio =
+      request.has_coupling_damping_ratio() ? request.coupling_damping_ratio() : couplingDampingRatio_;
+  if (!(ratio >= kMinCouplingDampingRatio && ratio <= kMaxCouplingDampingRatio)) {
+    fail(reply, "coupling_damping_ratio wants 0.1 to 2 (1: critical)", "coupling_damping_ratio");
+    return;
+  }
+  pb::LoadScene rebuild = session_->source;
+  LoadKind kind{true, {}};
+  if (request.has_voxel_size_m()) {
+    rebuild.set_voxel_size_m(request.voxel_size_m());
+    kind.errorField = "voxel_size_m";
+  }
+  if (request.has_point_spacing_m()) {
+    rebuild.set_point_spacing_m(request.point_spacing_m());
+    if (kind.errorField.empty()) kind.errorField = "point_spacing_m";
+  }
+  if (request.has_point_offset_m()) {
+    rebuild.set_point_offset_m(request.point_offset_m());
+    if (kind.errorField.empty()) kind.errorField = "point_offset_m";
+  }
+  const bool rebuilds = !kind.errorField.empty();
+  if (rebuilds && !sizesInRange(rebuild, reply)) return;
+  if (rebuilds && loading_) {
+    fail(reply, "a scene is loading already; wait for its reply");
+    return;
+  }
+
+  if (request.has_force_layer()) {
     LoopCommand command;
     command.kind = LoopCommand::Kind::SetForceLayer;
-    command.value = value;
+    command.value = request.force_layer();
     if (!post(command, reply)) return;
+    forceLayer_ = command.value;
   }
-  reply.mutable_done();
+  if (share != couplingStiffnessShare_ || ratio != couplingDampingRatio_) {
+    couplingStiffnessShare_ = share;
+    couplingDampingRatio_ = ratio;
+    const std::vector<CouplingGains> gains = couplingGains();
+    for (std::size_t i = 0; i < gains.size(); ++i) {
+      if (!model.objects[i].coupled) continue;
+      LoopCommand command;
+      command.kind = LoopCommand::Kind::SetCouplingGains;
+      command.object = static_cast<std::uint32_t>(i);
+      command.gains = gains[i];
+      if (!post(command, reply)) return;
+    }
+  }
+  if (rebuilds) {
+    load(client, id, rebuild, kind, reply);  // the reply follows the rebuild
+    return;
+  }
+  parameters(*reply.mutable_parameters());
+}
+
+void ControllerService::parameters(pb::Parameters& out) const {
+  const SimModel& model = session_->built->model;
+  out.set_force_layer(forceLayer_);
+  out.set_max_force_layer(model.pairs.empty() ? 0 : model.maxForceLayer());
+  out.set_voxel_size_m(session_->voxelSizeM);
+  out.set_point_spacing_m(session_->pointSpacingM);
+  out.set_point_offset_m(session_->pointOffsetM);
+  out.set_coupling_stiffness_share(couplingStiffnessShare_);
+  out.set_coupling_damping_ratio(couplingDampingRatio_);
+  for (const CouplingGains& g : couplingGains()) {
+    pb::CouplingGains& c = *out.add_coupling();
+    c.set_linear_stiffness_n_per_m(g.linearStiffnessNPerM);
+    c.set_linear_damping_ns_per_m(g.linearDampingNsPerM);
+    c.set_angular_stiffness_nm_per_rad(g.angularStiffnessNmPerRad);
+    c.set_angular_damping_nms_per_rad(g.angularDampingNmsPerRad);
+  }
 }
 
 void ControllerService::moveHandle(std::uint64_t client, const pb::MoveHandle& request,
@@ -398,7 +524,7 @@ void ControllerService::statistics(pb::Statistics& out) const {
 }
 
 void ControllerService::load(std::uint64_t client, std::uint64_t id, const pb::LoadScene& request,
-                             pb::ServerMessage& reply) {
+                             const LoadKind& kind, pb::ServerMessage& reply) {
   if (loading_) {
     fail(reply, "a scene is loading already; wait for its reply");
     return;
@@ -411,17 +537,11 @@ void ControllerService::load(std::uint64_t client, std::uint64_t id, const pb::L
     fail(reply, "load_scene wants at least one object to move", "move");
     return;
   }
-  for (const auto& [field, value] : {std::pair{"voxel_size_m", request.voxel_size_m()},
-                                     std::pair{"point_spacing_m", request.point_spacing_m()}}) {
-    if (!(value >= 0.0 && value <= 1.0)) {
-      fail(reply, std::string(field) + " wants 0 (the default) or a length up to 1 m", field);
-      return;
-    }
-  }
+  if (!sizesInRange(request, reply)) return;
   if (loadThread_.joinable()) loadThread_.join();
   loading_ = true;
-  log_("client " + std::to_string(client) + " loads " + request.scene());
-  loadThread_ = std::thread([this, client, id, request] {
+  log_("client " + std::to_string(client) + (kind.rebuild ? " rebuilds " : " loads ") + request.scene());
+  loadThread_ = std::thread([this, client, id, request, kind] {
     auto lastPercent = std::make_shared<int>(-1);
     const ProgressFn progress = [this, client, id, lastPercent](double fraction) {
       if (cancelLoad_) throw Error("the load was cancelled");
@@ -445,19 +565,21 @@ void ControllerService::load(std::uint64_t client, std::uint64_t id, const pb::L
       error = e.what();
     }
     auto result = std::make_shared<std::unique_ptr<ControllerSession>>(std::move(loaded));
-    asio::post(io_, [this, client, id, result, error] { finishLoad(client, id, std::move(*result), error); });
+    asio::post(io_, [this, client, id, kind, result, error] {
+      finishLoad(client, id, kind, std::move(*result), error);
+    });
   });
   // the reply follows when the load is done (finishLoad)
 }
 
-void ControllerService::finishLoad(std::uint64_t client, std::uint64_t id,
+void ControllerService::finishLoad(std::uint64_t client, std::uint64_t id, const LoadKind& kind,
                                    std::unique_ptr<ControllerSession> loaded, const std::string& error) {
   loading_ = false;
   pb::ServerMessage reply;
   reply.set_id(id);
   if (!loaded) {
     log_("load for client " + std::to_string(client) + " failed: " + error);
-    fail(reply, error, "scene");
+    fail(reply, error, kind.errorField);
   } else {
     log_("now simulating " + loaded->sceneName);
     pb::ServerMessage done;
@@ -465,8 +587,26 @@ void ControllerService::finishLoad(std::uint64_t client, std::uint64_t id,
     done.mutable_load_progress()->set_stage("loaded");
     done.mutable_load_progress()->set_fraction(1.0);
     if (send_) send_(client, done);
-    replaceSession(std::move(loaded));
-    listObjects(*reply.mutable_object_list());
+    std::optional<SimState> start;
+    if (kind.rebuild && session_) {
+      // the same objects, where they are now, at rest; the force layer kept when it fits
+      const SimModel& model = loaded->built->model;
+      start = makeSimState(model);
+      const FrameSnapshot& now = session_->loop->latest();
+      for (std::size_t i = 0; i < model.objects.size() && i < now.objects.size(); ++i)
+        start->bodies[i] = restingState(model.objects[i].body, now.objects[i].pose);
+      if (model.forceLayerInRange(static_cast<std::uint8_t>(forceLayer_)))
+        start->forceLayer = static_cast<std::uint8_t>(forceLayer_);
+    } else {
+      couplingStiffnessShare_ = 1.0;
+      couplingDampingRatio_ = kCouplingDampingRatio;
+    }
+    replaceSession(std::move(loaded), std::move(start));
+    if (kind.rebuild) {
+      parameters(*reply.mutable_parameters());
+    } else {
+      listObjects(*reply.mutable_object_list());
+    }
   }
   if (send_) send_(client, reply);
 }

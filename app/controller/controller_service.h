@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -50,15 +51,19 @@ private:
 
 /// A scene the controller simulates: the built model and the haptic loop running it.
 struct ControllerSession {
+  net::pb::LoadScene source;               ///< what it was built from (a rebuild changes the sizes)
   std::string sceneName;                   ///< as the scene source names it
   std::vector<std::string> staticObjects;  ///< names of the static parts
+  double voxelSizeM = 0.0;                 ///< of the static scene, as built
+  double pointSpacingM = 0.0;              ///< of the moving objects, as built
+  double pointOffsetM = 0.0;               ///< of the moving objects' points, as built
   std::unique_ptr<BuiltScene> built;       ///< the model the loop reads (a stable address)
-  std::unique_ptr<HapticLoop> loop;        ///< started
+  std::unique_ptr<HapticLoop> loop;        ///< started by the ControllerService
   std::unique_ptr<SessionProximity> proximity;
 };
 
-/// Builds and starts a session for a LoadScene request, calling `progress` as it goes
-/// (it throws to cancel). Runs on a worker thread; throws voxhap::Error for a scene it
+/// Builds a session (all but its loop) for a LoadScene request, calling `progress` as it
+/// goes (it throws to cancel). Runs on a worker thread; throws voxhap::Error for a scene it
 /// cannot load.
 using SessionLoader = std::function<std::unique_ptr<ControllerSession>(const net::pb::LoadScene& request,
                                                                        const ProgressFn& progress)>;
@@ -68,11 +73,12 @@ public:
   using LogFn = std::function<void(const std::string&)>;
   using SendFn = std::function<bool(std::uint64_t client, const net::pb::ServerMessage& message)>;
 
-  /// Serves `session` (null: none until a client loads one) and loads others with `loader`
-  /// on a worker thread, whose results come back through `io`. `shutdown` is called on a
+  /// Starts the haptic loop of `session` (null: none until a client loads one) with
+  /// `loopOptions` (its period from the model) and serves it; loads others with `loader` on
+  /// a worker thread, whose results come back through `io`. `shutdown` is called on a
   /// Shutdown request after its reply is queued.
   ControllerService(asio::io_context& io, std::unique_ptr<ControllerSession> session, SessionLoader loader,
-                    std::function<void()> shutdown, LogFn log);
+                    HapticLoopOptions loopOptions, std::function<void()> shutdown, LogFn log);
   /// Cancels a load in progress and waits for its thread; stops the loop.
   ~ControllerService() override;
 
@@ -106,15 +112,27 @@ private:
   void listObjects(net::pb::ObjectList& list) const;
   void grab(std::uint64_t client, const net::pb::Grab& request, net::pb::ServerMessage& reply);
   void release(const std::string& name, net::pb::ServerMessage& reply);
-  void setParameters(const net::pb::SetParameters& request, net::pb::ServerMessage& reply);
+  void setParameters(std::uint64_t client, std::uint64_t id, const net::pb::SetParameters& request,
+                     net::pb::ServerMessage& reply);
+  /// The coupling gains of every moving object at the current share and damping ratio.
+  std::vector<CouplingGains> couplingGains() const;
+  void parameters(net::pb::Parameters& out) const;
   void moveHandle(std::uint64_t client, const net::pb::MoveHandle& request, net::pb::ServerMessage& reply);
   void proximity(const net::pb::GetProximity& request, net::pb::ServerMessage& reply);
-  void load(std::uint64_t client, std::uint64_t id, const net::pb::LoadScene& request,
+  /// A load_scene (a new scene, its reply the object list), or a rebuild of the scene in
+  /// force for set_parameters (its objects kept where they are, the reply its parameters;
+  /// an error names `errorField`).
+  struct LoadKind {
+    bool rebuild = false;
+    std::string errorField = "scene";
+  };
+  void load(std::uint64_t client, std::uint64_t id, const net::pb::LoadScene& request, const LoadKind& kind,
             net::pb::ServerMessage& reply);
-  void finishLoad(std::uint64_t client, std::uint64_t id, std::unique_ptr<ControllerSession> loaded,
-                  const std::string& error);
-  /// Makes `session` (may be null) the one served, with no object held.
-  void replaceSession(std::unique_ptr<ControllerSession> session);
+  void finishLoad(std::uint64_t client, std::uint64_t id, const LoadKind& kind,
+                  std::unique_ptr<ControllerSession> loaded, const std::string& error);
+  /// Makes `session` (may be null) the one served, with no object held, and starts its loop
+  /// from `start` (none: every object where the scene puts it, at the model's force layer).
+  void replaceSession(std::unique_ptr<ControllerSession> session, std::optional<SimState> start = {});
   bool post(const LoopCommand& command, net::pb::ServerMessage& reply);
   asio::io_context& io_;
   std::unique_ptr<ControllerSession> session_;
@@ -138,6 +156,10 @@ private:
   /// use with its handle at `startWorld`; null after filling `reply` with an Error.
   StandingSpaceMouse* spaceMouse(const std::string& device, const Pose& startWorld,
                                  net::pb::ServerMessage& reply);
+  HapticLoopOptions loopOptions_;
+  double couplingStiffnessShare_ = 1.0;  ///< of every coupling's stiffest (scaledCouplingGains)
+  double couplingDampingRatio_ = kCouplingDampingRatio;
+  std::uint32_t forceLayer_ = 0;  ///< as last set (the haptic thread takes it at its next frame)
   std::uint64_t droppedCommands_ = 0;
   std::thread loadThread_;
   bool loading_ = false;

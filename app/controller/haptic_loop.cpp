@@ -9,9 +9,13 @@
 namespace voxhap::controller {
 namespace {
 
-FrameSnapshot emptySnapshot(const SimModel& model) {
+/// What a reader sees before the first frame: the objects where they start.
+FrameSnapshot initialSnapshot(const SimModel& model, const SimState& state) {
   FrameSnapshot s;
   s.objects.resize(model.objects.size());
+  for (std::size_t i = 0; i < s.objects.size(); ++i)
+    s.objects[i].pose = s.objects[i].handle = objectPose(model, state, i);
+  s.forceLayer = state.forceLayer;
   return s;
 }
 
@@ -27,11 +31,14 @@ HapticLoop::HapticLoop(const SimModel& model, SimState initial, std::shared_ptr<
       grabbed_(model.objects.size()),
       devices_(model.objects.size(), nullptr),
       handles_(model.objects.size()),
+      gains_(model.objects.size()),
       commands_(options.commandCapacity),
       retired_(std::bit_ceil(options.commandCapacity + model.objects.size())),
-      snapshots_(emptySnapshot(model)),
+      snapshots_(initialSnapshot(model, state_)),
       period_(options.periodNs * 3 / 2),
-      compute_(options.periodNs) {}
+      compute_(options.periodNs) {
+  for (std::size_t i = 0; i < model.objects.size(); ++i) gains_[i] = model.objects[i].gains;
+}
 
 HapticLoop::~HapticLoop() {
   stop();
@@ -83,6 +90,10 @@ void HapticLoop::apply(const LoopCommand& command) noexcept {
     return;
   }
   if (command.object >= devices_.size()) return;
+  if (command.kind == LoopCommand::Kind::SetCouplingGains) {
+    gains_[command.object] = command.gains;
+    return;
+  }
   retire(command.object);
   if (command.kind == LoopCommand::Kind::Grab && command.device != nullptr) {
     grabbed_[command.object].device = command.device;
@@ -137,6 +148,7 @@ void HapticLoop::run() noexcept {
     FrameInputs inputs;
     inputs.now = std::chrono::steady_clock::now();
     inputs.previousStepS = lastStepS;
+    inputs.couplingGains = gains_;
     const FrameStatus status =
         stepWithDevices(model_, state_, workspace_, devices_, handles_, inputs, outputs_);
     lastStepS = std::chrono::duration<double>(std::chrono::steady_clock::now() - inputs.now).count();

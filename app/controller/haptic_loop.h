@@ -26,14 +26,16 @@ namespace voxhap::controller {
 /// A command for the haptic thread, taken at the start of the next frame.
 struct LoopCommand {
   enum class Kind : std::uint8_t {
-    Grab,          ///< `device` holds `object` from now on (its time starts at 0 now)
-    Release,       ///< `object` goes free; its device is retired
-    SetForceLayer  ///< the force layer becomes `value`
+    Grab,             ///< `device` holds `object` from now on (its time starts at 0 now)
+    Release,          ///< `object` goes free; its device is retired
+    SetForceLayer,    ///< the force layer becomes `value`
+    SetCouplingGains  ///< `object`'s coupling takes `gains`
   };
   Kind kind = Kind::Release;
   std::uint32_t object = 0;
   HapticDevice* device = nullptr;
   std::uint32_t value = 0;
+  CouplingGains gains;
 };
 
 /// One moving object in a snapshot.
@@ -127,6 +129,7 @@ private:
   std::vector<GrabbedDevice> grabbed_;
   std::vector<HapticDevice*> devices_;  ///< &grabbed_[i] while held, else nullptr
   std::vector<HandleInput> handles_;
+  std::vector<CouplingGains> gains_;  ///< per object, its coupling's (the model's until set)
   SpscQueue<LoopCommand> commands_;
   SpscQueue<HapticDevice*> retired_;
   TripleBuffer<FrameSnapshot> snapshots_;

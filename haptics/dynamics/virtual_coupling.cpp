@@ -105,6 +105,29 @@ CouplingGains defaultCouplingGains(const RigidBodyModel& model, double dtS, cons
   return gains;
 }
 
+// Softer and differently damped gains stay stable: with k = s·k₀ (0 < s ≤ 1) the default's
+// a = 0.0625 becomes s·a ≤ 0.0625, and b = 2·ζ·√(k·m) gives c = 2·ζ·√(s·a) ≤ 2·2·0.25 = 1 at
+// ζ ≤ 2, so a + 2·c ≤ 2.07 < 4 and c < 2 (Jury's conditions above). A device limit only
+// lowers k₀, hence a, further.
+CouplingGains scaledCouplingGains(const CouplingGains& stiffest, const RigidBodyModel& model,
+                                  double stiffnessShare, double dampingRatio) {
+  if (!(stiffnessShare > 0.0 && stiffnessShare <= 1.0)) {
+    throw Error("coupling stiffness share must be above 0 and at most 1, got " +
+                formatNumber(stiffnessShare));
+  }
+  if (!(dampingRatio >= kMinCouplingDampingRatio && dampingRatio <= kMaxCouplingDampingRatio)) {
+    throw Error("coupling damping ratio must be " + formatNumber(kMinCouplingDampingRatio) + " to " +
+                formatNumber(kMaxCouplingDampingRatio) + ", got " + formatNumber(dampingRatio));
+  }
+  CouplingGains gains;
+  gains.linearStiffnessNPerM = stiffnessShare * stiffest.linearStiffnessNPerM;
+  gains.linearDampingNsPerM = 2.0 * dampingRatio * std::sqrt(gains.linearStiffnessNPerM * model.massKg);
+  gains.angularStiffnessNmPerRad = stiffnessShare * stiffest.angularStiffnessNmPerRad;
+  gains.angularDampingNmsPerRad =
+      2.0 * dampingRatio * std::sqrt(gains.angularStiffnessNmPerRad * model.principalInertiaKgM2.x);
+  return gains;
+}
+
 CouplingWrench couplingWrench(const CouplingGains& gains, const Pose& handleWorld,
                               const glm::dvec3& handleLinearVelocityWorld,
                               const glm::dvec3& handleAngularVelocityWorld, const RigidBodyModel& model,

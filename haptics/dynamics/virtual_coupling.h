@@ -66,6 +66,20 @@ CouplingGains defaultCouplingGains(const RigidBodyModel& model, double dtS);
 /// recomputed to keep the damping ratio. Throws as validateDeviceLimits does.
 CouplingGains defaultCouplingGains(const RigidBodyModel& model, double dtS, const DeviceLimits& limits);
 
+/// Damping ratios a coupling may be given (scaledCouplingGains): below, the object rings
+/// on its handle; above, c = b·h/m leaves the stable region's margin (virtual_coupling.cpp).
+inline constexpr double kMinCouplingDampingRatio = 0.1;
+inline constexpr double kMaxCouplingDampingRatio = 2.0;
+
+/// `stiffest` (the gains defaultCouplingGains gives `model`) softened: each stiffness times
+/// `stiffnessShare` (0 < share ≤ 1), each damping recomputed for `dampingRatio`
+/// (kMinCouplingDampingRatio … kMaxCouplingDampingRatio) with the mass and the smallest
+/// principal moment, as the defaults are. Within those ranges every gain stays inside the
+/// stable region the defaults were derived in. Throws voxhap::Error naming the argument
+/// outside its range.
+CouplingGains scaledCouplingGains(const CouplingGains& stiffest, const RigidBodyModel& model,
+                                  double stiffnessShare, double dampingRatio);
+
 /// A force and a torque, world frame.
 struct CouplingWrench {
   glm::dvec3 forceWorld{0.0};    ///< N

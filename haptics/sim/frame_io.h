@@ -20,6 +20,7 @@ namespace voxhap {
 struct HandleInput {
   Pose poseWorld;           ///< target local → world pose of the object
   HandleVelocity velocity;  ///< world frame
+  bool held = true;         ///< false: nothing holds the object this frame (no coupling wrench)
 };
 
 /// A wrench from outside the simulation on one moving object, world frame: the type-2
@@ -35,6 +36,9 @@ struct FrameInputs {
   std::span<const HandleInput> handles;
   /// Per object, added to its gravity, coupling and contacts; empty, or one per object.
   std::span<const ExternalWrench> externalWrenches;
+  /// Per object, the gains of its coupling in place of the model's (a user's softer
+  /// setting, scaledCouplingGains); empty: the model's.
+  std::span<const CouplingGains> couplingGains;
   /// When this frame began by the caller's clock: a paged voxmap's suspension is timed
   /// by it (paper §5.3). The frame itself reads no clock.
   std::chrono::steady_clock::time_point now{};

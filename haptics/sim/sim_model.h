@@ -9,6 +9,7 @@
 /// shared by every thread as std::shared_ptr<const SimModel>, read by step(). It holds
 /// no thread and no per-frame data (SimState, SimWorkspace).
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -95,14 +96,15 @@ struct SimModel {
   DeviceLimits deviceLimits;
   CoherenceOptions coherence;
 
-  /// Whether `value` is a force layer every pair's voxmap can render (1 … its largest value).
-  bool forceLayerInRange(std::uint8_t value) const noexcept {
-    if (value < 1) return false;
-    for (const PairModel& pair : pairs) {
-      if (value > voxmapOf(pair).encoding().maxValue()) return false;
-    }
-    return true;
+  /// The largest force layer every pair's voxmap can render (255 when there is no pair).
+  std::uint8_t maxForceLayer() const noexcept {
+    std::uint8_t largest = 255;
+    for (const PairModel& pair : pairs) largest = std::min(largest, voxmapOf(pair).encoding().maxValue());
+    return largest;
   }
+
+  /// Whether `value` is a force layer every pair's voxmap can render (1 … maxForceLayer()).
+  bool forceLayerInRange(std::uint8_t value) const noexcept { return value >= 1 && value <= maxForceLayer(); }
 
   const Voxmap& voxmapOf(const PairModel& pair) const {
     return pair.voxmapObject == kStaticEnvironment

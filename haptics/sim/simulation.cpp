@@ -45,7 +45,9 @@ FrameStatus stepWithDevices(const SimModel& model, SimState& state, SimWorkspace
                             FrameInputs inputs, FrameOutputs& outputs) noexcept {
   const double t = state.timeS + model.dtS;
   for (std::size_t i = 0; i < devices.size(); ++i) {
-    if (devices[i]) handles[i] = {devices[i]->handlePose(t), devices[i]->handleVelocity(t)};
+    // an object without a device is free, not held where a device last left its handle
+    handles[i] = devices[i] ? HandleInput{devices[i]->handlePose(t), devices[i]->handleVelocity(t), true}
+                            : HandleInput{{}, {}, false};
   }
   inputs.handles = handles;
   const FrameStatus status = step(model, state, workspace, inputs, outputs);
@@ -271,12 +273,12 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
         status |= kFrameNonFiniteZeroed;
       }
     }
-    if (object.coupled && i < inputs.handles.size()) {
+    if (object.coupled && i < inputs.handles.size() && inputs.handles[i].held) {
       const HandleInput& handle = inputs.handles[i];
       if (finite(handle)) {
-        const CouplingWrench coupling =
-            couplingWrench(object.gains, handle.poseWorld, handle.velocity.linearWorld,
-                           handle.velocity.angularWorld, object.body, body);
+        const CouplingGains& gains = i < inputs.couplingGains.size() ? inputs.couplingGains[i] : object.gains;
+        const CouplingWrench coupling = couplingWrench(gains, handle.poseWorld, handle.velocity.linearWorld,
+                                                       handle.velocity.angularWorld, object.body, body);
         // the body feels what the device renders (negated), never more: a handle that leads
         // far pulls with the device's largest force, not with a spring stretched without bound
         const CouplingWrench felt = deviceFeedback(coupling, model.deviceLimits);

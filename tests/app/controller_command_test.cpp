@@ -98,7 +98,10 @@ TEST_F(ControllerCommand, AClientListsSubscribesChangesTheForceLayerAndShutsItDo
   const auto& q = updates.back().objects(0).pose().orientation();
   EXPECT_LT(q.w(), 0.99999) << updates.back().DebugString();
 
-  EXPECT_TRUE(client.request(forceLayer(3)).has_done());
+  const pb::ServerMessage set = client.request(forceLayer(3));
+  ASSERT_TRUE(set.has_parameters()) << set.DebugString();
+  EXPECT_EQ(set.parameters().force_layer(), 3u);
+  EXPECT_GE(set.parameters().max_force_layer(), 4u);
   const pb::ServerMessage refused = client.request(forceLayer(200));
   ASSERT_TRUE(refused.has_error());
   EXPECT_EQ(refused.error().field(), "force_layer");
@@ -260,6 +263,127 @@ TEST_F(ControllerCommand, ProximityOfTheSeatedBallIsSmallBelowAndFarAbove) {
   const pb::ServerMessage notMoving = client.request(ask);
   ASSERT_TRUE(notMoving.has_error());
   EXPECT_EQ(notMoving.error().field(), "object");
+
+  child_->signal(SIGTERM);
+  EXPECT_EQ(finish().at("stopped_by"), "SIGTERM");
+}
+
+/// The last frame update of those that arrive in the next `forMs` (one at least).
+pb::FrameUpdate lastUpdateWithin(net::FrontendClient& client, std::chrono::milliseconds forMs) {
+  std::optional<pb::FrameUpdate> last;
+  const auto until = std::chrono::steady_clock::now() + forMs;
+  for (auto left = forMs; left > 0ms || !last; left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                                                   until - std::chrono::steady_clock::now())) {
+    const auto event = client.nextEvent(std::max(left, 1ms));
+    if (!event && last) break;
+    if (!event) {
+      ADD_FAILURE() << "no frame update";
+      return {};
+    }
+    if (event->has_frame_update()) last = event->frame_update();
+  }
+  return *last;
+}
+
+/// The contact force on the ball once it has settled against a handle pressed 1 mm into
+/// its socket, over the coupling's linear stiffness times the handle's lead: 1 when the
+/// coupling alone balances the contacts.
+double settledForceOverSpring(net::FrontendClient& client, double stiffnessNPerM) {
+  const pb::ObjectState ball = lastUpdateWithin(client, 700ms).objects(0);
+  const double leadM = std::abs(ball.handle().position_m().z() - ball.pose().position_m().z());
+  const double forceN = std::hypot(ball.force_n().x(), ball.force_n().y(), ball.force_n().z());
+  EXPECT_GT(leadM, 0.0005);  // the ball does not follow the handle into the socket
+  return forceN / (stiffnessNPerM * leadM);
+}
+
+TEST_F(ControllerCommand, ASofterCouplingPressesLessAndARebuildKeepsTheBallWhereItIs) {
+  start();
+  net::FrontendClient client = connect();
+  client.hello("parameters");
+  pb::ClientMessage grab;
+  grab.mutable_grab()->set_object("ball");
+  grab.mutable_grab()->set_device("client");
+  ASSERT_TRUE(client.request(grab).has_done());
+  // press the handle 1 mm down into the socket, turned 30° about z (the ball turns freely in it)
+  const double half = 0.5 * 0.5235987755982988;
+  pb::ClientMessage move;
+  move.mutable_move_handle()->set_object("ball");
+  move.mutable_move_handle()->mutable_handle()->mutable_position_m()->set_z(-0.001);
+  move.mutable_move_handle()->mutable_handle()->mutable_orientation()->set_w(std::cos(half));
+  move.mutable_move_handle()->mutable_handle()->mutable_orientation()->set_z(std::sin(half));
+  ASSERT_TRUE(client.request(move).has_done());
+  ASSERT_TRUE(client.request(subscribe(100.0)).has_done());
+
+  pb::ClientMessage ask;
+  ask.mutable_set_parameters();
+  const pb::ServerMessage defaults = client.request(ask);
+  ASSERT_TRUE(defaults.has_parameters()) << defaults.DebugString();
+  EXPECT_EQ(defaults.parameters().coupling_stiffness_share(), 1.0);
+  EXPECT_DOUBLE_EQ(defaults.parameters().voxel_size_m(), 0.001);
+  ASSERT_EQ(defaults.parameters().coupling_size(), 1);
+  const double stiffNPerM = defaults.parameters().coupling(0).linear_stiffness_n_per_m();
+  ASSERT_GT(stiffNPerM, 0.0);
+  const double stiffRatio = settledForceOverSpring(client, stiffNPerM);
+  EXPECT_NEAR(stiffRatio, 1.0, 0.2);
+
+  pb::ClientMessage soften;
+  soften.mutable_set_parameters()->set_coupling_stiffness_share(0.25);
+  soften.mutable_set_parameters()->set_coupling_damping_ratio(1.5);
+  soften.mutable_set_parameters()->set_force_layer(3);
+  const pb::ServerMessage softer = client.request(soften);
+  ASSERT_TRUE(softer.has_parameters()) << softer.DebugString();
+  const pb::CouplingGains& gains = softer.parameters().coupling(0);
+  EXPECT_DOUBLE_EQ(gains.linear_stiffness_n_per_m(), 0.25 * stiffNPerM);
+  // the spring four times softer, and the ball pressing with it: a quarter of the force at the same lead
+  EXPECT_NEAR(settledForceOverSpring(client, gains.linear_stiffness_n_per_m()), 1.0, 0.2);
+
+  for (const auto& [field, set] : std::vector<std::pair<std::string, void (*)(pb::SetParameters&)>>{
+           {"coupling_stiffness_share", [](pb::SetParameters& p) { p.set_coupling_stiffness_share(0.0); }},
+           {"coupling_stiffness_share", [](pb::SetParameters& p) { p.set_coupling_stiffness_share(1.5); }},
+           {"coupling_damping_ratio", [](pb::SetParameters& p) { p.set_coupling_damping_ratio(3.0); }},
+           {"voxel_size_m", [](pb::SetParameters& p) { p.set_voxel_size_m(-0.001); }},
+           {"point_spacing_m", [](pb::SetParameters& p) { p.set_point_spacing_m(2.0); }},
+           {"point_offset_m", [](pb::SetParameters& p) { p.set_point_offset_m(std::nan("")); }},
+       }) {
+    pb::ClientMessage bad;
+    set(*bad.mutable_set_parameters());
+    bad.mutable_set_parameters()->set_force_layer(4);  // refused with the rest: nothing changes
+    const pb::ServerMessage refused = client.request(bad);
+    ASSERT_TRUE(refused.has_error()) << bad.DebugString();
+    EXPECT_EQ(refused.error().field(), field);
+  }
+  EXPECT_EQ(client.request(ask).parameters().force_layer(), 3u);
+
+  // a coarser voxel, and points 8 mm inward (beyond the force layer: nothing touches),
+  // rebuild the model; the ball stays where it was, free. (With its points on the surface
+  // the coarser voxels turn it back to where its voxels line up with the socket's.)
+  const pb::ObjectState before = lastUpdateWithin(client, 100ms).objects(0);
+  EXPECT_LT(before.pose().orientation().w(), 0.97);  // turned about 30° (cos 15° = 0.966)
+  pb::ClientMessage coarser;
+  coarser.mutable_set_parameters()->set_voxel_size_m(0.0015);
+  coarser.mutable_set_parameters()->set_point_offset_m(-0.008);
+  client.setTimeout(120000ms);
+  const pb::ServerMessage rebuilt = client.request(coarser);
+  ASSERT_TRUE(rebuilt.has_parameters()) << rebuilt.DebugString();
+  EXPECT_DOUBLE_EQ(rebuilt.parameters().voxel_size_m(), 0.0015);
+  EXPECT_DOUBLE_EQ(rebuilt.parameters().point_spacing_m(), 0.0015);  // it followed the voxel size
+  EXPECT_DOUBLE_EQ(rebuilt.parameters().point_offset_m(), -0.008);
+  EXPECT_EQ(rebuilt.parameters().coupling_stiffness_share(), 0.25);
+  EXPECT_EQ(rebuilt.parameters().force_layer(), 3u);
+  // the updates that came during the rebuild were kept: the last is of the new model
+  const pb::FrameUpdate after = lastUpdateWithin(client, 300ms);
+  ASSERT_EQ(after.objects_size(), 1);
+  const pb::ObjectState& ball = after.objects(0);
+  EXPECT_FALSE(ball.has_handle());  // the grab ended
+  EXPECT_EQ(ball.contacts(), 0u) << after.DebugString();
+  for (const auto& [was, is] : {std::pair{before.pose().position_m().z(), ball.pose().position_m().z()},
+                                std::pair{before.pose().orientation().w(), ball.pose().orientation().w()},
+                                std::pair{before.pose().orientation().z(), ball.pose().orientation().z()}})
+    EXPECT_NEAR(is, was, 1e-4) << after.DebugString();
+  EXPECT_LT(ball.pose().orientation().w(), 0.97);  // still turned 30° (cos 15° = 0.966)
+  const pb::ServerMessage objects =
+      client.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
+  EXPECT_EQ(objects.object_list().objects(0).held_by(), "");
 
   child_->signal(SIGTERM);
   EXPECT_EQ(finish().at("stopped_by"), "SIGTERM");

@@ -182,15 +182,25 @@ def check_subscribe(c):
 
 
 def check_set_parameters(c):
-    c.request("set_parameters", pb.SetParameters(force_layer=4), expect="done")
-    c.request("set_parameters", pb.SetParameters(force_layer=3), expect="done")
-    c.request("set_parameters", pb.SetParameters(), expect="done")  # nothing set: no change
-    ok("set_parameters force_layer 4, 3, none: done")
-    for bad in (0, 100000):
-        err = expect_error(c, "set_parameters", pb.SetParameters(force_layer=bad), "force_layer",
-                           f"set_parameters force_layer {bad}")
-    c.request("set_parameters", pb.SetParameters(force_layer=4), expect="done")
-    ok(f"set_parameters force_layer 0 and 100000: error naming force_layer ({err.message!r})")
+    p = c.request("set_parameters", pb.SetParameters(), expect="parameters")  # nothing set: no change
+    check(1 <= p.force_layer <= p.max_force_layer, f"set_parameters: force layer in range {p}")
+    check(p.coupling_stiffness_share == 1.0 and p.coupling_damping_ratio == 1.0, f"default coupling {p}")
+    check(len(p.coupling) == 1 and p.coupling[0].linear_stiffness_n_per_m > 0, f"coupling gains {p}")
+    p3 = c.request("set_parameters", pb.SetParameters(force_layer=3), expect="parameters")
+    check(p3.force_layer == 3, f"set_parameters force_layer 3: {p3.force_layer}")
+    half = c.request("set_parameters", pb.SetParameters(coupling_stiffness_share=0.5), expect="parameters")
+    k0, k = p.coupling[0].linear_stiffness_n_per_m, half.coupling[0].linear_stiffness_n_per_m
+    check(abs(k - 0.5 * k0) <= 1e-9 * k0, f"share 0.5 halves the stiffness: {k0} -> {k}")
+    ok(f"set_parameters: none, force_layer 3, coupling share 0.5 (stiffness {k0:.0f} -> {k:.0f} N/m)")
+    for field, value in (("force_layer", 0), ("force_layer", 100000), ("force_layer", p.max_force_layer + 1),
+                         ("coupling_stiffness_share", 0.0), ("coupling_damping_ratio", 5.0),
+                         ("voxel_size_m", -1.0), ("point_offset_m", 2.0)):
+        err = expect_error(c, "set_parameters", pb.SetParameters(**{field: value}), field,
+                           f"set_parameters {field} {value}")
+    back = c.request("set_parameters", pb.SetParameters(force_layer=p.force_layer, coupling_stiffness_share=1.0),
+                     expect="parameters")
+    check(back.force_layer == p.force_layer and back.coupling_stiffness_share == 1.0, f"restored {back}")
+    ok(f"set_parameters out of range: error naming the field ({err.message!r}), nothing changed")
 
 
 def check_statistics(c):

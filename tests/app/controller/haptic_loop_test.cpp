@@ -77,16 +77,16 @@ private:
 
 TEST_F(HapticLoopTest, AGrabTellsTheDeviceWhereItsObjectIs) {
   auto press = std::make_unique<ScriptedDevice>(pressingDevice(0.005, model_));
-  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, press.get(), 0}));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, press.get(), 0, {}}));
   const FrameSnapshot moved =
       waitFor([](const FrameSnapshot& s) { return s.objects[0].pose.position.z < -1e-4; });
   ASSERT_LT(moved.objects[0].pose.position.z, -1e-4);
   GrabRecordingDevice device(model_.deviceLimits);
-  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, &device, 0}));  // replaces the script
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, &device, 0, {}}));  // replaces the script
   waitFor([&](const FrameSnapshot&) { return device.grabs.load() > 0; });
   ASSERT_EQ(device.grabs.load(), 1);
   EXPECT_LT(device.start.position.z, -1e-4);  // where the script had pushed it, not its place in the scene
-  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Release, 0, nullptr, 0}));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Release, 0, nullptr, 0, {}}));
   waitFor([](const FrameSnapshot& s) { return !s.objects[0].held; });
   loop_->stop();
 }
@@ -95,7 +95,7 @@ TEST_F(HapticLoopTest, FramesAdvanceAndAGrabbedBoxIsPressedOntoThePlate) {
   const std::uint64_t start = waitFor([](const FrameSnapshot& s) { return s.frame >= 10; }).frame;
   EXPECT_GE(start, 10u);
   auto device = std::make_unique<ScriptedDevice>(pressingDevice(0.005, model_));
-  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, device.get(), 0}));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, device.get(), 0, {}}));
   const FrameSnapshot pressed = waitFor([](const FrameSnapshot& s) {
     return s.objects[0].held && s.objects[0].contacts > 0 && s.objects[0].pose.position.z < 0.0;
   });
@@ -107,7 +107,7 @@ TEST_F(HapticLoopTest, FramesAdvanceAndAGrabbedBoxIsPressedOntoThePlate) {
       waitFor([&](const FrameSnapshot& s) { return s.frame > pressed.frame + 300; });
   EXPECT_GT(resting.objects[0].forceWorld.z, 0.0);  // the plate pushes back up
 
-  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Release, 0, nullptr, 0}));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Release, 0, nullptr, 0, {}}));
   const FrameSnapshot released = waitFor([](const FrameSnapshot& s) { return !s.objects[0].held; });
   EXPECT_FALSE(released.objects[0].held);
   EXPECT_EQ(loop_->takeRetired(), device.get());
@@ -115,13 +115,48 @@ TEST_F(HapticLoopTest, FramesAdvanceAndAGrabbedBoxIsPressedOntoThePlate) {
 }
 
 TEST_F(HapticLoopTest, TheForceLayerChangesAtTheNextFrame) {
-  ASSERT_TRUE(loop_->post({LoopCommand::Kind::SetForceLayer, 0, nullptr, 3}));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::SetForceLayer, 0, nullptr, 3, {}}));
   EXPECT_EQ(waitFor([](const FrameSnapshot& s) { return s.forceLayer == 3; }).forceLayer, 3u);
+}
+
+TEST_F(HapticLoopTest, TheCouplingTakesTheGainsSetForIt) {
+  LoopCommand slack{LoopCommand::Kind::SetCouplingGains, 0, nullptr, 0, CouplingGains{}};  // no spring
+  ASSERT_TRUE(loop_->post(slack));
+  auto device = std::make_unique<ScriptedDevice>(pressingDevice(0.005, model_));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, device.get(), 0, {}}));
+  const FrameSnapshot held = waitFor([](const FrameSnapshot& s) { return s.objects[0].held; });
+  const FrameSnapshot unpulled = waitFor([&](const FrameSnapshot& s) { return s.frame > held.frame + 300; });
+  EXPECT_GT(unpulled.objects[0].pose.position.z, -1e-6);  // held, but nothing pulls it down
+
+  LoopCommand stiff = slack;
+  stiff.gains = model_.objects[0].gains;
+  ASSERT_TRUE(loop_->post(stiff));
+  const FrameSnapshot pulled =
+      waitFor([](const FrameSnapshot& s) { return s.objects[0].pose.position.z < -1e-4; });
+  EXPECT_LT(pulled.objects[0].pose.position.z, -1e-4);
+  loop_->stop();  // before the device goes
+}
+
+TEST_F(HapticLoopTest, ObjectsStartWhereTheInitialStatePutsThem) {
+  loop_->stop();
+  SimState start = makeSimState(model_);
+  Pose raisedAndTurned;
+  raisedAndTurned.position.z = 0.01;  // 12 mm above the plate, out of reach of its force layer
+  raisedAndTurned.orientation = glm::angleAxis(0.5, glm::dvec3(0.0, 0.0, 1.0));
+  start.bodies[0] = restingState(model_.objects[0].body, raisedAndTurned);
+  HapticLoopOptions options;
+  options.realtime = false;
+  loop_ = std::make_unique<HapticLoop>(model_, start, nullptr, options);
+  EXPECT_NEAR(loop_->latest().objects[0].pose.position.z, 0.01, 1e-12);  // before the first frame too
+  loop_->start();
+  const FrameSnapshot later = waitFor([](const FrameSnapshot& s) { return s.frame >= 100; });
+  EXPECT_NEAR(later.objects[0].pose.position.z, 0.01, 1e-9);
+  EXPECT_NEAR(later.objects[0].pose.orientation.w, std::cos(0.25), 1e-9);
 }
 
 TEST_F(HapticLoopTest, StopRetiresTheDevicesStillHeldAndKeepsItsStatistics) {
   auto device = std::make_unique<ScriptedDevice>(pressingDevice(0.0, model_));
-  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, device.get(), 0}));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, device.get(), 0, {}}));
   waitFor([](const FrameSnapshot& s) { return s.objects[0].held && s.frame > 200; });
   loop_->stop();
   loop_->stop();  // a second stop does nothing
@@ -135,7 +170,7 @@ TEST_F(HapticLoopTest, AFullQueueRefusesCommandsWithoutBlocking) {
   loop_->stop();  // nobody takes commands any more
   int accepted = 0;
   for (int i = 0; i < 1000; ++i)
-    accepted += loop_->post({LoopCommand::Kind::SetForceLayer, 0, nullptr, 4}) ? 1 : 0;
+    accepted += loop_->post({LoopCommand::Kind::SetForceLayer, 0, nullptr, 4, {}}) ? 1 : 0;
   EXPECT_EQ(accepted, 256);  // HapticLoopOptions::commandCapacity
 }
 

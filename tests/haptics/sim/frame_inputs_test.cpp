@@ -62,7 +62,7 @@ TEST(FrameInputs, ANonFiniteWrenchIsDroppedAndReported) {
 TEST(FrameInputs, ANonFiniteHandleHoldsNothingAndSendsNoForce) {
   const SimModel model = boxInTheAir(true);
   LocalSimulation sim(model);
-  HandleInput handle{sim.state.bodies[0].pose(model.objects[0].body), {}};
+  HandleInput handle{sim.state.bodies[0].pose(model.objects[0].body), {}, true};
   handle.poseWorld.position.z += 0.001;  // a finite handle 1 mm above pulls the box up
   EXPECT_EQ(sim.step(std::span(&handle, 1)), kFrameOk);
   EXPECT_LT(sim.object(0).feedback.forceWorld.z, 0.0);  // the user feels the box hang on the handle
@@ -73,6 +73,26 @@ TEST(FrameInputs, ANonFiniteHandleHoldsNothingAndSendsNoForce) {
   EXPECT_EQ(other.step(std::span(&handle, 1)), kFrameNonFiniteZeroed);
   EXPECT_EQ(other.object(0).feedback.forceWorld, glm::dvec3(0.0));
   EXPECT_EQ(other.state.bodies[0].linearVelocityWorld, glm::dvec3(0.0));
+}
+
+TEST(FrameInputs, AnObjectWithoutADeviceIsFreeWhereverItIs) {
+  const SimModel model = boxInTheAir(true);
+  LocalSimulation sim(model);
+  Pose away;  // 5 mm aside and turned: a device's handle at the scene placement would pull it back
+  away.position.x = 0.005;
+  away.orientation = glm::angleAxis(0.3, glm::dvec3(0.0, 0.0, 1.0));
+  sim.state.bodies[0] = restingState(model.objects[0].body, away);
+  const RigidBodyState before = sim.state.bodies[0];
+  HapticDevice* const none = nullptr;
+  for (int f = 0; f < 100; ++f) ASSERT_EQ(sim.stepWithDevices(std::span(&none, 1)), kFrameOk);
+  EXPECT_EQ(sim.state.bodies[0].comWorld, before.comWorld);
+  EXPECT_EQ(sim.state.bodies[0].orientation, before.orientation);
+  EXPECT_EQ(sim.object(0).feedback.forceWorld, glm::dvec3(0.0));
+
+  HandleInput released{away, {}, false};  // a handle that holds nothing pulls nothing
+  released.poseWorld.position.x = 0.0;
+  EXPECT_EQ(sim.step(std::span(&released, 1)), kFrameOk);
+  EXPECT_EQ(sim.state.bodies[0].comWorld, before.comWorld);
 }
 
 }  // namespace

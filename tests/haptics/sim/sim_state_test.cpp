@@ -141,7 +141,8 @@ TEST(SimState, AFixedSceneAndScriptGiveTheCommittedHash) {
     const double t = std::min(1.0, f / 300.0);
     const HandleInput handle{{glm::dvec3(0.0003 + 0.005 * t, -0.0007, -0.0028 * t),
                               quatFromRotationVector(glm::dvec3(0.0, 0.0, 0.1 * t))},
-                             {}};
+                             {},
+                             true};
     ASSERT_EQ(sim.step(std::span(&handle, 1)) & ~kFrameDeadlineMissed, 0u) << "frame " << f;
   }
   EXPECT_GT(sim.object(0).contacts, 0u);
