@@ -62,8 +62,9 @@ int runControllerCommand(const ControllerArgs& args, const CommandContext& c) {
     throw UsageError("--move NAME is required with a SCENE (the object the controller moves)");
   if (options.scene.empty() && !options.moving.empty()) throw UsageError("--move wants a SCENE");
   const std::string& d = args.device;
-  if (!d.empty() && d.rfind("script:", 0) != 0 && d != "spacemouse" && d.rfind("spacemouse:", 0) != 0)
-    throw UsageError("--device wants script:FILE or spacemouse[:/dev/hidrawN], not '" + d + "'");
+  if (!d.empty() && d.rfind("script:", 0) != 0 && d.rfind("hand:", 0) != 0 && d != "spacemouse" &&
+      d.rfind("spacemouse:", 0) != 0)
+    throw UsageError("--device wants script:FILE, hand:FILE or spacemouse[:/dev/hidrawN], not '" + d + "'");
   if (!args.device.empty() && options.scene.empty()) throw UsageError("--device wants a SCENE");
   options.model = sceneModelOptions(args.sim, c.console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
   if (args.listen) parseListen(*args.listen, options);
@@ -84,8 +85,9 @@ void addControllerCommand(CommandTree& tree) {
       "The haptic controller: the 1 kHz simulation and its devices, serving front ends over TCP.";
   controller.usage =
       "voxhap controller [SCENE --move NAME] [--listen HOST:PORT] [--token FILE] [--device "
-      "script:FILE|spacemouse]\n"
-      "       [--voxel-size LENGTH] [--point-spacing LENGTH] [--capacity N] [--duration SECONDS]\n"
+      "script:FILE|hand:FILE|spacemouse]\n"
+      "       [--voxel-size LENGTH] [--point-spacing LENGTH] [--point-offset LENGTH] [--capacity N] "
+      "[--duration SECONDS]\n"
       "       [--no-realtime] [--json]";
   controller.description =
       "Runs the paper's Haptic Controller (§6): a haptic thread keeps the 1 kHz loop on absolute\n"
@@ -93,18 +95,21 @@ void addControllerCommand(CommandTree& tree) {
       "memory locked when the system allows it (it says so when not); after a stall it re-syncs\n"
       "to the clock instead of running the missed frames back to back. The calling thread\n"
       "serves front ends over TCP (docs/protocol.md): list objects, grab and release them with\n"
-      "a device, move a handle, set the force layer, stream poses, read statistics, load another\n"
-      "scene, shut down. Without a SCENE it waits for a client to load one.\n\n"
+      "a device, move a handle, set the force layer, coupling and sizes, stream poses, read\n"
+      "statistics, load another scene, shut down. Without a SCENE it waits for a client to\n"
+      "load one.\n\n"
       "It listens on 127.0.0.1:7400 by default (port 0: any free port); the line 'listening on\n"
       "HOST:PORT' on stderr says where. Any address beyond loopback needs --token FILE, whose\n"
       "contents (without the final line end) every client must present in its hello.\n\n"
-      "--device script:FILE grabs the first --move object with a motion script at start, as\n"
-      "`voxhap simulate` plays it; --device spacemouse grabs it with the first SpaceMouse-class\n"
+      "--device grabs the first --move object at start: script:FILE with a motion script, as\n"
+      "`voxhap simulate` plays it; hand:FILE with the script as the target of a simulated hand\n"
+      "holding a force-feedback handle, which the rendered force pushes back (the handle stops\n"
+      "short of a wall the script goes through); spacemouse with the first SpaceMouse-class\n"
       "6-DOF controller found (spacemouse:/dev/hidrawN for that one): deflection drives the\n"
-      "handle's velocity, button 1 releases the object and grabs it again; clients can grab\n"
-      "objects too. It runs until SIGINT or\n"
-      "SIGTERM, a client's shutdown request, or --duration seconds of wall time, then prints\n"
-      "the haptic period's p50/p99/p99.9/max and overruns (text, or one JSON document with\n"
+      "handle's velocity, button 1 releases the object and grabs it again. Clients can grab\n"
+      "objects too. It runs until SIGINT or SIGTERM, a client's shutdown request, or\n"
+      "--duration seconds of wall time, then prints the haptic period's p50/p99/p99.9/max and\n"
+      "overruns (text, or one JSON document with\n"
       "--json) and exits 0.\n\n"
       "Examples:\n"
       "  voxhap controller landing-gear --move actuator --device script:assets/scripts/actuator-extract.txt\n"
@@ -123,11 +128,11 @@ void addControllerCommand(CommandTree& tree) {
   command.add_option("--token", args->tokenFile, "a token clients must present; required beyond loopback")
       ->type_name("FILE");
   command.add_option("--device", args->device, "grab the first moved object at start with this device")
-      ->type_name("script:FILE|spacemouse[:PATH]");
+      ->type_name("script:FILE|hand:FILE|spacemouse[:PATH]");
   SimOptions& sim = args->sim;
   addSimOptions(command, sim,
-                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::Capacity, SimOption::VoxelMemory,
-                 SimOption::DeviceProfile});
+                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::Capacity,
+                 SimOption::VoxelMemory, SimOption::DeviceProfile});
   command.get_option("--voxel-size")
       ->description("voxel size of the static scene (default 2.5mm, as the demo)");
   command.get_option("--point-spacing")->description("point spacing of the moving objects (default 1mm)");

@@ -5,6 +5,7 @@
 
 #include "haptics/core/error.h"
 #include "haptics/device/motion_script.h"
+#include "haptics/device/simulated_hand_device.h"
 
 namespace voxhap::controller {
 namespace {
@@ -15,6 +16,10 @@ constexpr int kMaxProximityVoxels = 16;
 /// Grab's device for the first SpaceMouse found, and the prefix that names one by path.
 constexpr const char* kSpaceMouse = "spacemouse";
 constexpr const char* kSpaceMousePrefix = "spacemouse:";
+/// Grab's devices that play a motion script: rigidly, or as the target of a simulated hand
+/// holding a force-feedback handle (simulated_hand_device.h).
+constexpr const char* kScriptPrefix = "script:";
+constexpr const char* kHandPrefix = "hand:";
 
 void fail(pb::ServerMessage& reply, const std::string& message, const std::string& field = {}) {
   reply.mutable_error()->set_message(message);
@@ -228,10 +233,19 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
   HapticDevice* holder = nullptr;
   ClientHandleDevice* clientHandle = nullptr;
   StandingSpaceMouse* mouse = nullptr;
-  if (device.rfind("script:", 0) == 0) {
+  if (device.rfind(kScriptPrefix, 0) == 0 || device.rfind(kHandPrefix, 0) == 0) {
+    const MovingObjectModel& o = session_->built->model.objects[i];
     try {
-      created = std::make_unique<ScriptedDevice>(loadMotionScript(device.substr(7)),
-                                                 session_->built->model.deviceLimits);
+      if (device.rfind(kScriptPrefix, 0) == 0) {
+        created = std::make_unique<ScriptedDevice>(
+            loadMotionScript(device.substr(std::strlen(kScriptPrefix))), session_->built->model.deviceLimits);
+      } else {
+        SimulatedHandParams hand;
+        hand.graspLocal = o.body.comLocal;
+        created =
+            std::make_unique<SimulatedHandDevice>(loadMotionScript(device.substr(std::strlen(kHandPrefix))),
+                                                  hand, session_->built->model.deviceLimits);
+      }
     } catch (const Error& e) {
       fail(reply, e.what(), "device");
       return;
@@ -253,7 +267,8 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
     clientHandle = handle.get();
     created = std::move(handle);
   } else {
-    fail(reply, "unknown device '" + device + "' (script:PATH, spacemouse[:PATH] or client)", "device");
+    fail(reply, "unknown device '" + device + "' (script:PATH, hand:PATH, spacemouse[:PATH] or client)",
+         "device");
     return;
   }
   if (created) holder = created.get();

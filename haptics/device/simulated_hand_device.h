@@ -36,12 +36,10 @@
 
 namespace voxhap {
 
-/// The handle and the hand holding it. Defaults are round assumptions for a hand
-/// holding the stylus of a desktop arm in a firm pen grip: 0.2 kg moving with the
-/// handle, 500 N/m, critically damped (b = 2·√(k·m)); 2·10⁻⁴ kg·m² and 2 N·m/rad,
-/// critically damped, in rotation. For scale, one published fit of a whole arm holding
-/// a HapticMaster gave M = 0.55 kg, B = 6.5 N·s/m, K = 135 N/m (Sci. Rep. 5, 18004,
-/// 2015, Fig. 3); a pen grip on a light stylus moves less mass and is stiffer.
+/// The handle and the hand holding it. Defaults are round assumptions, not measurements,
+/// for a hand holding the stylus of a desktop arm in a firm pen grip: 0.2 kg moving with
+/// the handle, 500 N/m, critically damped (b = 2·√(k·m)); 2·10⁻⁴ kg·m² and 2 N·m/rad,
+/// critically damped, in rotation.
 struct SimulatedHandParams {
   double handleMassKg = 0.2;                  ///< m: handle plus the hand's moving mass, kg, > 0
   double handleInertiaKgM2 = 2e-4;            ///< I: about the grasp point, kg·m², > 0

@@ -389,6 +389,37 @@ TEST_F(ControllerCommand, ASofterCouplingPressesLessAndARebuildKeepsTheBallWhere
   EXPECT_EQ(finish().at("stopped_by"), "SIGTERM");
 }
 
+TEST_F(ControllerCommand, ASimulatedHandIsHeldBackByTheForceItFeels) {
+  start();
+  {
+    std::ofstream script(dir_ / "press.txt");
+    script << "# the hand 5 mm down into the socket, from the start\n0 1 0 0 0 0 0 -0.005\n10 1 0 0 0 0 0 "
+              "-0.005\n";
+  }
+  net::FrontendClient client = connect();
+  client.hello("hand");
+  for (const char* device : {"script:", "hand:"}) {
+    pb::ClientMessage grab;
+    grab.mutable_grab()->set_object("ball");
+    grab.mutable_grab()->set_device(device + (dir_ / "press.txt").string());
+    ASSERT_TRUE(client.request(grab).has_done());
+    ASSERT_TRUE(client.request(subscribe(100.0)).has_done());
+    const pb::ObjectState ball = lastUpdateWithin(client, 700ms).objects(0);
+    client.request(subscribe(0.0));
+    const double handleZ = ball.handle().position_m().z();
+    if (std::string(device) == "script:") {
+      EXPECT_DOUBLE_EQ(handleZ, -0.005);  // a rigid handle goes where the script says
+    } else {
+      // the contact's force pushes the handle back against the hand's 500 N/m: it stops
+      // near the ball, which the socket holds within a voxel
+      EXPECT_GT(handleZ, -0.001) << ball.DebugString();
+      EXPECT_GT(std::abs(ball.force_n().z()), 0.1);
+    }
+  }
+  child_->signal(SIGTERM);
+  EXPECT_EQ(finish().at("stopped_by"), "SIGTERM");
+}
+
 TEST_F(ControllerCommand, AClientLoadsASceneWithProgressAndThenSimulatesIt) {
   startWithout({});
   net::FrontendClient client = connect();
