@@ -52,6 +52,9 @@ Benchmark extractionBenchmark();
 /// Frame time against pointshell size (10^4 … 10^7 points), coherent and brute force.
 Benchmark scalingBenchmark();
 
+/// Handle motion to pose at a front end, through a controller on loopback.
+Benchmark latencyBenchmark();
+
 /// Time against error: gap and force direction over analytic scenes, voxel sizes, bit
 /// widths, geometrical awareness and coherence.
 Benchmark errorBenchmark();

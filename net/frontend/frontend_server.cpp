@@ -321,6 +321,10 @@ void FrontendServer::accept() {
       asio::error_code ignored;
       socket.close(ignored);
     } else {
+      // small frames go out at once: Nagle's wait for an ACK the client delays (40 ms on
+      // Linux) would hold every frame update behind the one before
+      asio::error_code ignored;
+      socket.set_option(tcp::no_delay(true), ignored);
       auto session = std::make_shared<Session>(state, std::move(socket), client);
       state->sessions.emplace(client, session);
       session->start();

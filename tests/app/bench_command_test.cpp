@@ -47,6 +47,7 @@ TEST_F(BenchCommand, HelpListsEveryBenchmark) {
   EXPECT_NE(r.out.find("\n  extraction "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n  scaling "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n  error "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n  latency "), std::string::npos) << r.out;
 }
 
 TEST_F(BenchCommand, UnknownNameExitsTwoListingTheValidNames) {
@@ -258,6 +259,20 @@ TEST_F(BenchCommand, ErrorRefusesAnUnknownSceneOrBitWidthBeforeMeasuring) {
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
+}
+
+TEST_F(BenchCommand, LatencyTimesEveryHandleMoveBackToTheClient) {
+  const CliRun run = voxhap({"bench", "latency", "--samples", "20", "--no-realtime", "--json"});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(run.out);
+  EXPECT_EQ(j.at("benchmark"), "latency");
+  const nlohmann::ordered_json& row = j.at("rows").at(0);
+  EXPECT_EQ(row.at("samples"), 20);
+  EXPECT_EQ(row.at("lost"), 0);  // each move came back within a second
+  EXPECT_GT(row.at("latency_p50_us").get<double>(), 0.0);
+  EXPECT_LE(row.at("latency_p50_us").get<double>(), row.at("latency_max_us").get<double>());
+  EXPECT_EQ(row.at("sched_fifo"), "no");
+  EXPECT_EQ(voxhap({"bench", "latency", "--samples", "3"}).exitCode, 2);
 }
 
 }  // namespace
