@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "haptics/core/error.h"
+#include "haptics/device/usb_hotplug.h"
 
 namespace voxhap {
 namespace {
@@ -69,11 +70,13 @@ std::vector<SpaceMouseInfo> listSpaceMice() {
 }
 
 SpaceMouseDevice::SpaceMouseDevice(const Pose& startWorld, const DeviceLimits& limits,
-                                   const SpaceMouseConfig& config, std::unique_ptr<HidTransport> transport)
+                                   const SpaceMouseConfig& config, std::unique_ptr<HidTransport> transport,
+                                   std::unique_ptr<HotplugSource> hotplug)
     : limits_(limits),
       config_(config),
       transport_(std::move(transport)),
-      rate_(config.rate, startWorld, config.pivotLocal) {
+      rate_(config.rate, startWorld, config.pivotLocal),
+      hotplug_(std::move(hotplug)) {
   validateDeviceLimits(limits_, "SpaceMouse");
   if (!(config_.fullScaleCounts > 0.0) || !std::isfinite(config_.fullScaleCounts))
     throw Error("SpaceMouse: fullScaleCounts must be a positive number of counts");
@@ -109,15 +112,29 @@ SpaceMouseDevice::SpaceMouseDevice(const Pose& startWorld, const DeviceLimits& l
   Sample first;
   first.connected = 1;
   mailbox_.publish(first);
+
+  if (!hotplug_) {
+    hotplug_ = std::make_unique<UsbHotplugWatcher>(
+        std::vector<std::uint16_t>(kSpaceMouseVendorIds.begin(), kSpaceMouseVendorIds.end()));
+  }
+  hotplug_->start([this] { onHotplugArrival(); });
+  hotplugActive_ = hotplug_->active();
+  std::ostringstream status;
+  status << hotplug_->status()
+         << (hotplugActive_ ? "; enumerating on arrival and every " : "; looking for a SpaceMouse every ")
+         << config_.rescanPeriodS << " s";
+  hotplugStatus_ = status.str();
+
   reader_ = std::thread([this] { readerLoop(); });
 }
 
 SpaceMouseDevice::~SpaceMouseDevice() {
+  hotplug_.reset();
   {
-    std::lock_guard<std::mutex> lock(stopMutex_);
+    std::lock_guard<std::mutex> lock(wakeMutex_);
     stopping_ = true;
   }
-  stopSignal_.notify_all();
+  wakeSignal_.notify_all();
   if (reader_.joinable()) reader_.join();
   transport_->close();
 }
@@ -168,10 +185,19 @@ void SpaceMouseDevice::handleBytes(std::span<const std::uint8_t> bytes) {
   }
 }
 
+void SpaceMouseDevice::onHotplugArrival() {
+  hotplugArrivals_.fetch_add(1, std::memory_order_acq_rel);
+  {
+    std::lock_guard<std::mutex> lock(wakeMutex_);
+    arrived_ = true;
+  }
+  wakeSignal_.notify_all();
+}
+
 void SpaceMouseDevice::readerLoop() {
   std::array<std::uint8_t, kReadBufferBytes> buffer{};
   const auto rescan = std::chrono::duration<double>(config_.rescanPeriodS);
-  std::unique_lock<std::mutex> lock(stopMutex_);
+  std::unique_lock<std::mutex> lock(wakeMutex_);
   while (!stopping_) {
     lock.unlock();
     bool waitBeforeNext = false;
@@ -194,7 +220,13 @@ void SpaceMouseDevice::readerLoop() {
       }
     }
     lock.lock();
-    if (waitBeforeNext) stopSignal_.wait_for(lock, rescan, [this] { return stopping_; });
+    // an arrival ends the wait at once; the hidraw node may come a little after the USB
+    // device (the HID driver binds, udev sets its permissions), so an enumeration at the
+    // arrival can miss it, and the next periodic rescan, rescanPeriodS on, finds it
+    if (waitBeforeNext) {
+      wakeSignal_.wait_for(lock, rescan, [this] { return stopping_ || arrived_; });
+      arrived_ = false;
+    }
   }
 }
 

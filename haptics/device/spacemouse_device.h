@@ -6,7 +6,10 @@
 ///   reader thread (its own): enumerate → open → hid read (readTimeoutMs) → parse →
 ///     publish the newest state to a LatestValue; button edges into an SpscQueue. On a read
 ///     error the device is closed, a zero deflection is published, and the thread
-///     enumerates again every rescanPeriodS until a SpaceMouse is back, then reads it.
+///     enumerates again every rescanPeriodS, and at once on each hotplug arrival, until a
+///     SpaceMouse is back, then reads it.
+///   hotplug thread (the HotplugSource's; libusb's event thread by default): on an arrival,
+///     sets a flag under the reader's wake mutex and wakes the reader; nothing else.
 ///   haptic thread: handlePose / handleVelocity / setFeedback / resetHandle — they take the
 ///     newest state with readNewer and integrate rate control; no lock, allocation or wait.
 ///   comms thread (one consumer): tryPopButtonEvent.
@@ -15,6 +18,7 @@
 /// held, force zero); no button event is made up for it, and the button state is kept, so
 /// the first report of the device once back gives the edges since.
 
+#include <array>
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -25,6 +29,7 @@
 #include <vector>
 
 #include "haptics/device/hid_transport.h"
+#include "haptics/device/hotplug_source.h"
 #include "haptics/device/rate_control.h"
 #include "haptics/device/scripted_device.h"
 #include "haptics/device/spacemouse_report.h"
@@ -61,6 +66,11 @@ struct ButtonEvent {
   bool pressed = false;     ///< true: went down; false: came up
 };
 
+/// The USB vendor ids whose arrivals a SpaceMouseDevice's default hotplug watcher reports
+/// (a model of another vendor, found by its usage, is found by the periodic rescan).
+inline constexpr std::array<std::uint16_t, 2> kSpaceMouseVendorIds{kVendorLogitech3Dconnexion,
+                                                                   kVendor3Dconnexion};
+
 /// Set-up of a SpaceMouseDevice.
 struct SpaceMouseConfig {
   RateControlParams rate;
@@ -76,13 +86,15 @@ public:
   /// How many button events wait for the comms thread before new ones are dropped.
   static constexpr std::size_t kButtonQueueCapacity = 64;
 
-  /// Finds and opens a SpaceMouse through `transport` (hidapi unless given), starts the
-  /// reader thread; the handle starts at `startWorld` (the grabbed object's pose). Throws
+  /// Finds and opens a SpaceMouse through `transport` (hidapi unless given), starts
+  /// `hotplug` (unless given: a UsbHotplugWatcher for kSpaceMouseVendorIds) and the reader
+  /// thread; the handle starts at `startWorld` (the grabbed object's pose). Throws
   /// voxhap::Error when none is found ("no SpaceMouse found: N HID devices seen, …"), when
   /// it cannot be opened, or on bad limits or parameters.
   SpaceMouseDevice(const Pose& startWorld, const DeviceLimits& limits, const SpaceMouseConfig& config = {},
-                   std::unique_ptr<HidTransport> transport = nullptr);
-  /// Stops and joins the reader thread, closes the device.
+                   std::unique_ptr<HidTransport> transport = nullptr,
+                   std::unique_ptr<HotplugSource> hotplug = nullptr);
+  /// Stops the hotplug source, stops and joins the reader thread, closes the device.
   ~SpaceMouseDevice() override;
   SpaceMouseDevice(const SpaceMouseDevice&) = delete;
   SpaceMouseDevice& operator=(const SpaceMouseDevice&) = delete;
@@ -116,6 +128,14 @@ public:
   std::uint64_t disconnects() const noexcept { return disconnects_.load(std::memory_order_acquire); }
   /// Times a device was opened again after a loss.
   std::uint64_t reconnects() const noexcept { return reconnects_.load(std::memory_order_acquire); }
+  /// Whether a hotplug arrival wakes the reader (else it has only its periodic rescan).
+  bool hotplugActive() const noexcept { return hotplugActive_; }
+  /// One line for the log, e.g. "libusb hotplug unavailable: …; looking for a SpaceMouse
+  /// every 1 s" or "libusb hotplug on for vendors 046d, 256f; enumerating on arrival and
+  /// every 1 s". Fixed at construction.
+  const std::string& hotplugStatus() const noexcept { return hotplugStatus_; }
+  /// Hotplug arrivals seen so far (of any device of the watched vendors).
+  std::uint64_t hotplugArrivals() const noexcept { return hotplugArrivals_.load(std::memory_order_acquire); }
   /// Button events dropped because the queue was full.
   std::uint64_t droppedButtonEvents() const noexcept {
     return droppedEvents_.load(std::memory_order_acquire);
@@ -133,6 +153,7 @@ private:
   };
 
   void readerLoop();
+  void onHotplugArrival();
   bool tryOpen(bool afterLoss);
   void handleBytes(std::span<const std::uint8_t> bytes);
   void advanceTo(double tS) noexcept;
@@ -155,6 +176,7 @@ private:
   std::atomic<std::uint64_t> disconnects_{0};
   std::atomic<std::uint64_t> reconnects_{0};
   std::atomic<std::uint64_t> droppedEvents_{0};
+  std::atomic<std::uint64_t> hotplugArrivals_{0};
 
   // haptic thread's own
   RateController rate_;
@@ -163,11 +185,17 @@ private:
   double lastTimeS_ = 0.0;
   bool started_ = false;
 
-  // stop signal for the reader (never touched by the haptic thread)
-  std::mutex stopMutex_;
-  std::condition_variable stopSignal_;
-  bool stopping_ = false;
+  // what wakes the reader: stop, or a hotplug arrival (never touched by the haptic thread)
+  std::mutex wakeMutex_;
+  std::condition_variable wakeSignal_;
+  bool stopping_ = false;  // under wakeMutex_
+  bool arrived_ = false;   // under wakeMutex_
   std::thread reader_;
+
+  // stopped first in the destructor: its arrival function uses the members above
+  std::unique_ptr<HotplugSource> hotplug_;
+  bool hotplugActive_ = false;
+  std::string hotplugStatus_;
 };
 
 }  // namespace voxhap

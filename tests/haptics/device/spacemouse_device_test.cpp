@@ -34,6 +34,7 @@ public:
     std::deque<FakeRead> reads;
     std::string openPath;
     int opens = 0;
+    int enumerations = 0;
     bool failOpen = false;
   };
 
@@ -41,6 +42,7 @@ public:
 
   std::vector<HidDeviceInfo> enumerate() override {
     std::lock_guard<std::mutex> lock(shared_->mutex);
+    ++shared_->enumerations;
     return shared_->present;
   }
   bool open(const std::string& path) override {
@@ -67,6 +69,39 @@ public:
   }
   void close() noexcept override {}
   std::string lastError() const override { return "Permission denied"; }
+
+private:
+  std::shared_ptr<Shared> shared_;
+};
+
+/// A hotplug source the test fires by hand (on the test's thread).
+class FakeHotplug final : public HotplugSource {
+public:
+  struct Shared {
+    std::mutex mutex;
+    ArrivalFn onArrival;  // set by start, cleared by the destructor
+    bool active = true;
+  };
+
+  explicit FakeHotplug(std::shared_ptr<Shared> shared) : shared_(std::move(shared)) {}
+  ~FakeHotplug() override {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    shared_->onArrival = nullptr;
+  }
+  void start(ArrivalFn onArrival) override {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    shared_->onArrival = std::move(onArrival);
+  }
+  bool active() const noexcept override { return shared_->active; }
+  std::string status() const override { return shared_->active ? "fake hotplug on" : "fake hotplug off"; }
+
+  /// Reports an arrival as the source's thread would; false when not started or gone.
+  static bool fire(Shared& shared) {
+    std::lock_guard<std::mutex> lock(shared.mutex);
+    if (!shared.onArrival) return false;
+    shared.onArrival();
+    return true;
+  }
 
 private:
   std::shared_ptr<Shared> shared_;
@@ -104,7 +139,23 @@ protected:
 
   std::unique_ptr<SpaceMouseDevice> makeDevice(const Pose& start = Pose{}) {
     return std::make_unique<SpaceMouseDevice>(start, DeviceLimits{}, config_,
-                                              std::make_unique<FakeTransport>(shared_));
+                                              std::make_unique<FakeTransport>(shared_),
+                                              std::make_unique<FakeHotplug>(hotplug_));
+  }
+
+  /// Makes the device vanish (from enumeration, and as a read error) and waits for the loss.
+  void unplug(SpaceMouseDevice& device) {
+    {
+      std::lock_guard<std::mutex> lock(shared_->mutex);
+      shared_->present = {keyboard()};
+    }
+    queue({{}, true});
+    ASSERT_TRUE(waitFor([&] { return !device.connected(); }));
+  }
+
+  void replug() {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    shared_->present = {keyboard(), navigator()};
   }
 
   void queue(FakeRead read) {
@@ -125,6 +176,7 @@ protected:
   }
 
   std::shared_ptr<FakeTransport::Shared> shared_ = std::make_shared<FakeTransport::Shared>();
+  std::shared_ptr<FakeHotplug::Shared> hotplug_ = std::make_shared<FakeHotplug::Shared>();
   SpaceMouseConfig config_;
 };
 
@@ -234,6 +286,58 @@ TEST_F(SpaceMouseDeviceTest, VanishedDeviceHoldsStillAndIsPickedUpAgain) {
   for (int i = 0; i < 10; ++i) device->handlePose(t += 1e-3);
   EXPECT_GT(device->handlePose(t).position.x, held.position.x);
   EXPECT_EQ(device->handlePose(t).position.y, held.position.y);
+}
+
+TEST_F(SpaceMouseDeviceTest, HotplugArrivalEnumeratesAtOnce) {
+  config_.rescanPeriodS = 30.0;  // the periodic rescan cannot be what finds it
+  auto device = makeDevice();
+  EXPECT_TRUE(device->hotplugActive());
+  EXPECT_EQ(device->hotplugStatus(), "fake hotplug on; enumerating on arrival and every 30 s");
+  unplug(*device);
+  replug();
+  // present again, but nothing looks until the arrival
+  std::this_thread::sleep_for(50ms);
+  EXPECT_FALSE(device->connected());
+  ASSERT_TRUE(FakeHotplug::fire(*hotplug_));
+  const auto fired = std::chrono::steady_clock::now();
+  while (!device->connected() && std::chrono::steady_clock::now() - fired < 2s)
+    std::this_thread::sleep_for(1ms);
+  EXPECT_TRUE(device->connected()) << "no reconnect within 2 s of the arrival";
+  EXPECT_EQ(device->reconnects(), 1u);
+  EXPECT_EQ(device->hotplugArrivals(), 1u);
+}
+
+TEST_F(SpaceMouseDeviceTest, ArrivalBeforeTheNodeIsThereIsCaughtByTheRescan) {
+  config_.rescanPeriodS = 0.2;
+  auto device = makeDevice();
+  unplug(*device);
+  // the USB device arrives before its hidraw node: the enumeration at the arrival misses it
+  const auto enumerations = [&] {
+    std::lock_guard<std::mutex> lock(shared_->mutex);
+    return shared_->enumerations;
+  };
+  const int before = enumerations();
+  ASSERT_TRUE(FakeHotplug::fire(*hotplug_));
+  ASSERT_TRUE(waitFor([&] { return enumerations() > before; }));
+  EXPECT_FALSE(device->connected());
+  replug();
+  ASSERT_TRUE(waitFor([&] { return device->connected(); }));
+  EXPECT_EQ(device->reconnects(), 1u);
+}
+
+TEST_F(SpaceMouseDeviceTest, WithoutHotplugTheStatusSaysSo) {
+  hotplug_->active = false;
+  config_.rescanPeriodS = 1.0;
+  auto device = makeDevice();
+  EXPECT_FALSE(device->hotplugActive());
+  EXPECT_EQ(device->hotplugStatus(), "fake hotplug off; looking for a SpaceMouse every 1 s");
+}
+
+TEST_F(SpaceMouseDeviceTest, HotplugSourceIsStoppedBeforeTheDeviceGoes) {
+  auto device = makeDevice();
+  ASSERT_TRUE(FakeHotplug::fire(*hotplug_));
+  device.reset();
+  EXPECT_FALSE(FakeHotplug::fire(*hotplug_));
 }
 
 TEST_F(SpaceMouseDeviceTest, HapticThreadCallsAllocateNothing) {
