@@ -430,6 +430,7 @@ ControllerService::StandingSpaceMouse* ControllerService::spaceMouse(const std::
   try {
     auto mouse = std::make_unique<SpaceMouseDevice>(startWorld, session_->built->model.deviceLimits, config);
     log_(device + ": " + mouse->openedAtStart().name + " at " + mouse->openedAtStart().path);
+    log_(device + ": " + mouse->hotplugStatus());
     spaceMice_.push_back({device, std::move(mouse), 0});
   } catch (const Error& e) {
     fail(reply, e.what(), "device");
