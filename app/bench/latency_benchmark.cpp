@@ -13,8 +13,8 @@
 #include <sstream>
 #include <thread>
 
-#include <asio/ip/tcp.hpp>
 #include <CLI/CLI.hpp>
+#include <asio/ip/tcp.hpp>
 
 #include "app/bench/benchmark.h"
 #include "app/cli/number_format.h"
@@ -196,8 +196,9 @@ Benchmark latencyBenchmark() {
     command.add_option("--scene", args->scene, "scene to load (default ball-and-socket)")->type_name("SCENE");
     command.add_option("--move", args->move, "the object the client's handle holds (default ball)")
         ->type_name("NAME");
-    command.add_flag("--no-realtime", [args](std::int64_t) { args->realtime = false; },
-                     "do not ask for SCHED_FIFO and mlockall");
+    command.add_flag(
+        "--no-realtime", [args](std::int64_t) { args->realtime = false; },
+        "do not ask for SCHED_FIFO and mlockall");
     addSimOptions(command, args->sim, {SimOption::VoxelSize, SimOption::Cache});
     return [args](Console& console) { return runLatencyBench(*args, console); };
   };

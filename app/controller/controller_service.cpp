@@ -118,16 +118,23 @@ void ControllerService::replaceSession(std::unique_ptr<ControllerSession> sessio
   session_->loop =
       std::make_unique<HapticLoop>(model, std::move(state), session_->built->staticPager, options);
   session_->loop->start();
+  postCouplingGains();  // a fresh queue, with room for one command per object
+}
+
+bool ControllerService::postCouplingGains() {
   const std::vector<CouplingGains> gains = couplingGains();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!model.objects[i].coupled) continue;
+  for (std::size_t i = 0; i < gains.size(); ++i) {
+    if (!session_->built->model.objects[i].coupled) continue;
     LoopCommand command;
     command.kind = LoopCommand::Kind::SetCouplingGains;
     command.object = static_cast<std::uint32_t>(i);
     command.gains = gains[i];
-    // the loop has not run a frame yet: its queue is empty and holds kCommandCapacity
-    [[maybe_unused]] const bool queued = session_->loop->post(command);
+    if (!session_->loop->post(command)) {
+      ++droppedCommands_;
+      return false;
+    }
   }
+  return true;
 }
 
 std::vector<CouplingGains> ControllerService::couplingGains() const {
@@ -359,14 +366,9 @@ void ControllerService::setParameters(std::uint64_t client, std::uint64_t id,
   if (share != couplingStiffnessShare_ || ratio != couplingDampingRatio_) {
     couplingStiffnessShare_ = share;
     couplingDampingRatio_ = ratio;
-    const std::vector<CouplingGains> gains = couplingGains();
-    for (std::size_t i = 0; i < gains.size(); ++i) {
-      if (!model.objects[i].coupled) continue;
-      LoopCommand command;
-      command.kind = LoopCommand::Kind::SetCouplingGains;
-      command.object = static_cast<std::uint32_t>(i);
-      command.gains = gains[i];
-      if (!post(command, reply)) return;
+    if (!postCouplingGains()) {
+      fail(reply, "the haptic thread's command queue is full; try again");
+      return;
     }
   }
   if (rebuilds) {

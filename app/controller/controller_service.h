@@ -116,6 +116,8 @@ private:
                      net::pb::ServerMessage& reply);
   /// The coupling gains of every moving object at the current share and damping ratio.
   std::vector<CouplingGains> couplingGains() const;
+  /// Queues those gains for the haptic thread; false when its queue refused one.
+  bool postCouplingGains();
   void parameters(net::pb::Parameters& out) const;
   void moveHandle(std::uint64_t client, const net::pb::MoveHandle& request, net::pb::ServerMessage& reply);
   void proximity(const net::pb::GetProximity& request, net::pb::ServerMessage& reply);
