@@ -6,7 +6,8 @@
 #   bash tools/setup.sh demo [ARGS…]   build (Release) and run `voxhap demo ARGS…`
 #   bash tools/setup.sh test           check every source's formatting, build and run
 #                                      every test in Release, then again under
-#                                      AddressSanitizer + UBSan
+#                                      AddressSanitizer + UBSan, and the threaded
+#                                      ones under ThreadSanitizer
 #   bash tools/setup.sh format         clang-format every source in place
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -19,6 +20,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev clang-format umockdev
   xvfb xauth libgl1-mesa-dri
 )
+
+# the tests of code that runs on more than one thread, for the tsan preset
+tsan_tests='^(HapticLoop|ControllerCommand|FrontendServer|FrameCodec|SpscQueue|LatestValue|TripleBuffer|SpaceMouseDevice|UsbHotplug|FrameClock|Realtime|VoxelPager|BenchCommand\.Latency)|^ProtocolPythonClient$'
 
 say() { printf 'setup: %s\n' "$*" >&2; }
 
@@ -97,7 +101,11 @@ case "${1:-}" in
     ctest --preset release
     build asan
     ctest --preset asan
-    say "all tests passed (Release and ASan+UBSan)"
+    # the threads of the haptic controller (haptic loop, comms, devices, front-end server)
+    # again under ThreadSanitizer
+    build tsan
+    ctest --preset tsan -R "$tsan_tests"
+    say "all tests passed (Release and ASan+UBSan; the controller's under TSan too)"
     ;;
   *)
     echo "usage: bash tools/setup.sh demo [ARGS...] | test | format" >&2

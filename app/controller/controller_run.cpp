@@ -144,7 +144,8 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   };
   const auto log = [&console](const std::string& line) { console.info(line); };
   ControllerService service(
-      io, std::move(initial), loader, loopOptions, [&] { stop("a client asked it to shut down"); }, log);
+      io, std::move(initial), loader, loopOptions, options.device,
+      [&] { stop("a client asked it to shut down"); }, log);
   net::FrontendServerOptions serverOptions;
   serverOptions.token = options.token;
   try {
@@ -157,15 +158,6 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   service.setSender([&server](std::uint64_t client, const net::pb::ServerMessage& message) {
     return server->send(client, message);
   });
-
-  if (!options.device.empty()) {
-    net::pb::ClientMessage grab;
-    grab.mutable_grab()->set_object(service.session()->built->model.objects[0].name);
-    grab.mutable_grab()->set_device(options.device);
-    net::pb::ServerMessage reply;
-    service.handle(0, grab, reply);
-    if (reply.has_error()) throw Error("--device " + options.device + ": " + reply.error().message());
-  }
 
   if (const controller::ControllerSession* session = service.session())
     console.info(realtimeLine(session->loop->realtime()));

@@ -72,13 +72,14 @@ Pose ClientHandleDevice::handlePose(double) noexcept {
 
 ControllerService::ControllerService(asio::io_context& io, std::unique_ptr<ControllerSession> session,
                                      SessionLoader loader, HapticLoopOptions loopOptions,
-                                     std::function<void()> shutdown, LogFn log)
+                                     const std::string& startDevice, std::function<void()> shutdown,
+                                     LogFn log)
     : io_(io),
       loader_(std::move(loader)),
       shutdown_(std::move(shutdown)),
       log_(std::move(log)),
       loopOptions_(loopOptions) {
-  replaceSession(std::move(session));
+  replaceSession(std::move(session), {}, startDevice);
 }
 
 ControllerService::~ControllerService() {
@@ -100,7 +101,7 @@ void ControllerService::stopLoop() {
 }
 
 void ControllerService::replaceSession(std::unique_ptr<ControllerSession> session,
-                                       std::optional<SimState> start) {
+                                       std::optional<SimState> start, const std::string& startDevice) {
   stopLoop();
   devices_.clear();  // every device is retired once the old loop has stopped
   spaceMice_.clear();
@@ -117,8 +118,18 @@ void ControllerService::replaceSession(std::unique_ptr<ControllerSession> sessio
   options.periodNs = std::llround(model.dtS * 1e9);
   session_->loop =
       std::make_unique<HapticLoop>(model, std::move(state), session_->built->staticPager, options);
-  session_->loop->start();
   postCouplingGains();  // a fresh queue, with room for one command per object
+  if (!startDevice.empty()) {
+    // queued before the first frame, which takes it (the loop's first snapshot already
+    // shows where the object starts)
+    pb::Grab grabIt;
+    grabIt.set_object(model.objects.front().name);
+    grabIt.set_device(startDevice);
+    pb::ServerMessage reply;
+    grab(0, grabIt, reply);
+    if (reply.has_error()) throw Error("device " + startDevice + ": " + reply.error().message());
+  }
+  session_->loop->start();
 }
 
 bool ControllerService::postCouplingGains() {

@@ -74,11 +74,14 @@ public:
   using SendFn = std::function<bool(std::uint64_t client, const net::pb::ServerMessage& message)>;
 
   /// Starts the haptic loop of `session` (null: none until a client loads one) with
-  /// `loopOptions` (its period from the model) and serves it; loads others with `loader` on
-  /// a worker thread, whose results come back through `io`. `shutdown` is called on a
-  /// Shutdown request after its reply is queued.
+  /// `loopOptions` (its period from the model), its first moving object held from the first
+  /// frame by `startDevice` when that is not empty (a Grab's device), and serves it; loads
+  /// others with `loader` on a worker thread, whose results come back through `io`.
+  /// `shutdown` is called on a Shutdown request after its reply is queued. Throws
+  /// voxhap::Error when `startDevice` cannot grab.
   ControllerService(asio::io_context& io, std::unique_ptr<ControllerSession> session, SessionLoader loader,
-                    HapticLoopOptions loopOptions, std::function<void()> shutdown, LogFn log);
+                    HapticLoopOptions loopOptions, const std::string& startDevice,
+                    std::function<void()> shutdown, LogFn log);
   /// Cancels a load in progress and waits for its thread; stops the loop.
   ~ControllerService() override;
 
@@ -132,9 +135,12 @@ private:
             net::pb::ServerMessage& reply);
   void finishLoad(std::uint64_t client, std::uint64_t id, const LoadKind& kind,
                   std::unique_ptr<ControllerSession> loaded, const std::string& error);
-  /// Makes `session` (may be null) the one served, with no object held, and starts its loop
-  /// from `start` (none: every object where the scene puts it, at the model's force layer).
-  void replaceSession(std::unique_ptr<ControllerSession> session, std::optional<SimState> start = {});
+  /// Makes `session` (may be null) the one served and starts its loop from `start` (none:
+  /// every object where the scene puts it, at the model's force layer), with no object held
+  /// but by `startDevice` (empty: none), which holds the first moving object from the first
+  /// frame. Throws voxhap::Error when that device cannot grab.
+  void replaceSession(std::unique_ptr<ControllerSession> session, std::optional<SimState> start = {},
+                      const std::string& startDevice = {});
   bool post(const LoopCommand& command, net::pb::ServerMessage& reply);
   asio::io_context& io_;
   std::unique_ptr<ControllerSession> session_;

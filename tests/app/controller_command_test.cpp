@@ -376,10 +376,12 @@ TEST_F(ControllerCommand, ASofterCouplingPressesLessAndARebuildKeepsTheBallWhere
   const pb::ObjectState& ball = after.objects(0);
   EXPECT_FALSE(ball.has_handle());  // the grab ended
   EXPECT_EQ(ball.contacts(), 0u) << after.DebugString();
-  for (const auto& [was, is] : {std::pair{before.pose().position_m().z(), ball.pose().position_m().z()},
-                                std::pair{before.pose().orientation().w(), ball.pose().orientation().w()},
-                                std::pair{before.pose().orientation().z(), ball.pose().orientation().z()}})
-    EXPECT_NEAR(is, was, 1e-4) << after.DebugString();
+  // where it was when the rebuild began: the ball may still have been closing on its handle
+  // then (slowly under a sanitizer), so within 0.01 of each component, while the scene's
+  // placement is 0.03 (w) and 0.26 (z) away
+  EXPECT_NEAR(ball.pose().position_m().z(), before.pose().position_m().z(), 1e-4) << after.DebugString();
+  EXPECT_NEAR(ball.pose().orientation().w(), before.pose().orientation().w(), 0.01) << after.DebugString();
+  EXPECT_NEAR(ball.pose().orientation().z(), before.pose().orientation().z(), 0.01) << after.DebugString();
   EXPECT_LT(ball.pose().orientation().w(), 0.97);  // still turned 30° (cos 15° = 0.966)
   const pb::ServerMessage objects =
       client.request(request([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
