@@ -7,18 +7,14 @@
 // the frame's snapshot, the comms thread's 1 kHz update timer, TCP over loopback.
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <csignal>
-#include <sstream>
 #include <thread>
 
 #include <CLI/CLI.hpp>
-#include <asio/ip/tcp.hpp>
 
 #include "app/bench/benchmark.h"
 #include "app/cli/number_format.h"
-#include "app/controller/controller_run.h"
+#include "app/controller/inprocess_controller.h"
 #include "app/sim_options.h"
 #include "haptics/core/error.h"
 #include "net/frontend/frontend_client.h"
@@ -40,27 +36,6 @@ struct LatencyBenchArgs {
   SimOptions sim;
 };
 
-/// A loopback port that was free a moment ago.
-std::uint16_t freeLoopbackPort() {
-  asio::io_context io;
-  asio::ip::tcp::acceptor acceptor(io, asio::ip::tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
-  return acceptor.local_endpoint().port();
-}
-
-/// A client connected once the controller listens (it voxelizes first), or an Error when
-/// the controller has stopped or has not listened within 10 minutes.
-net::FrontendClient connectWhenListening(std::uint16_t port, const std::atomic<bool>& controllerStopped) {
-  const auto giveUp = Clock::now() + 600s;
-  for (;;) {
-    try {
-      return net::FrontendClient("127.0.0.1", port, 5000ms);
-    } catch (const Error&) {
-      if (Clock::now() > giveUp || controllerStopped) throw;
-      std::this_thread::sleep_for(50ms);
-    }
-  }
-}
-
 double percentileUs(std::vector<double> sortedUs, double q) {
   if (sortedUs.empty()) return 0.0;
   const auto i = static_cast<std::size_t>(q * static_cast<double>(sortedUs.size() - 1) + 0.5);
@@ -73,25 +48,13 @@ BenchTable runLatencyBench(const LatencyBenchArgs& args, Console& console) {
   options.scene = args.scene;
   options.moving = {args.move};
   options.model = sceneModelOptions(args.sim, console, 1e-3, std::nullopt);
-  options.listenPort = freeLoopbackPort();
   options.realtime = args.realtime;
-  options.json = true;
-  std::ostringstream summary;
-  std::string controllerError;
-  std::atomic<bool> controllerStopped{false};
-  std::thread controller([&] {
-    try {
-      runController(options, console, summary);
-    } catch (const std::exception& e) {
-      controllerError = e.what();
-    }
-    controllerStopped = true;
-  });
+  InProcessController controller(options, console);
 
   std::vector<double> latenciesUs;
   std::uint64_t lost = 0;
-  try {
-    net::FrontendClient client = connectWhenListening(options.listenPort, controllerStopped);
+  {
+    net::FrontendClient client("127.0.0.1", controller.port(), 5000ms);
     client.hello("bench latency");
     pb::ClientMessage grab;
     grab.mutable_grab()->set_object(args.move);
@@ -128,21 +91,11 @@ BenchTable runLatencyBench(const LatencyBenchArgs& args, Console& console) {
       std::this_thread::sleep_for(std::chrono::microseconds((i * 31) % 1000));
       if (progress) progress(static_cast<double>(i) / static_cast<double>(args.samples));
     }
-    pb::ClientMessage shutdown;
-    shutdown.mutable_shutdown();
-    client.request(shutdown);
-  } catch (...) {
-    // a controller that listens has its SIGTERM handler in place (runController)
-    if (!controllerStopped) std::raise(SIGTERM);
-    controller.join();
-    if (!controllerError.empty()) throw Error("the controller stopped: " + controllerError);
-    throw;
   }
-  controller.join();
-  if (!controllerError.empty()) throw Error("the controller stopped: " + controllerError);
+  const std::string summary = controller.stopAndWait();
 
   std::sort(latenciesUs.begin(), latenciesUs.end());
-  const nlohmann::json run = nlohmann::json::parse(summary.str());
+  const nlohmann::json run = nlohmann::json::parse(summary);
   BenchTable table("latency", {
                                   {"samples", "moves", BenchStyle::Count},
                                   {"lost", "lost", BenchStyle::Count},

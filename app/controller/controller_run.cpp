@@ -163,6 +163,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
     console.info(realtimeLine(session->loop->realtime()));
   const asio::ip::tcp::endpoint listening = server->endpoint();
   console.info("listening on " + listening.address().to_string() + ":" + std::to_string(listening.port()));
+  if (options.onListening) options.onListening(listening.port());
 
   signals.async_wait([&](const asio::error_code& e, int signal) {
     if (!e) stop(signal == SIGINT ? "SIGINT" : "SIGTERM");
@@ -174,6 +175,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
     if (service.session() && service.session()->loop->latest().stopped)
       stop("the haptic thread stopped (paging could not keep up)");
     if (options.durationS && secondsSince(started) >= *options.durationS) stop("the duration ran out");
+    if (options.stopRequested && options.stopRequested->load()) stop("its owner asked it to stop");
     housekeeping.expires_after(kHousekeepingPeriod);
     housekeeping.async_wait([&](const asio::error_code& e) {
       if (!e && !stopping) keepHouse();

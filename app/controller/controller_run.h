@@ -4,6 +4,8 @@
 /// calling thread (the comms thread) until SIGINT, SIGTERM, a Shutdown request or the
 /// asked duration, then stops the haptic thread and reports its period statistics.
 
+#include <atomic>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -25,6 +27,10 @@ struct ControllerOptions {
   std::optional<double> durationS;  ///< stop after this much wall time
   bool realtime = true;             ///< try mlockall and SCHED_FIFO
   bool json = false;
+  /// Called on the controller's thread once it listens, with the port (in-process use).
+  std::function<void(std::uint16_t port)> onListening;
+  /// When set, the controller stops within its housekeeping period once this holds true.
+  const std::atomic<bool>* stopRequested = nullptr;
 };
 
 /// Runs the controller; returns when it has stopped, after printing its summary on `out`
