@@ -49,13 +49,25 @@ pb::HelloReply FrontendClient::hello(const std::string& clientName, const std::s
   return reply.hello_reply();
 }
 
-pb::ServerMessage FrontendClient::request(pb::ClientMessage request) {
+std::uint64_t FrontendClient::send(pb::ClientMessage request) {
   if (!open_) throw Error("the connection to the controller is closed");
   const std::uint64_t id = ++lastId_;
   request.set_id(id);
   std::string frame;
   appendFrame(frame, request.SerializeAsString());
   sendRaw(frame);
+  return id;
+}
+
+std::optional<pb::ServerMessage> FrontendClient::nextMessage(Duration timeout) {
+  if (received_.empty() && !readMessage(timeout)) return std::nullopt;
+  pb::ServerMessage message = std::move(received_.front());
+  received_.pop_front();
+  return message;
+}
+
+pb::ServerMessage FrontendClient::request(pb::ClientMessage request) {
+  const std::uint64_t id = send(std::move(request));
   std::optional<pb::ServerMessage> reply = waitFor(id, timeout_);
   if (!reply) {
     throw Error(open_ ? "no reply from the controller within " + std::to_string(timeout_.count()) + " ms"

@@ -41,6 +41,13 @@ public:
   /// connection is closed.
   std::optional<pb::ServerMessage> nextEvent(Duration timeout);
 
+  /// Sends `request` under the next id without waiting; returns the id. For a client that
+  /// takes replies and events as they come (nextMessage), e.g. a window's network thread.
+  std::uint64_t send(pb::ClientMessage request);
+  /// The oldest message received and not taken yet, reply or event, waiting up to
+  /// `timeout`; none when none comes or the connection is closed.
+  std::optional<pb::ServerMessage> nextMessage(Duration timeout);
+
   /// Writes raw bytes to the stream (tests of the controller's handling of bad input).
   void sendRaw(std::string_view bytes);
   /// Waits up to `timeout` for the controller to close the connection; true when it did.
