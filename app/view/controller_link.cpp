@@ -220,7 +220,8 @@ void ControllerLink::handle(const pb::ServerMessage& message) {
     for (std::size_t i = 0; i < state_.objects.size() && i < state_.proximity.size(); ++i) {
       if (state_.objects[i].name() == message.proximity().object()) state_.proximity[i] = message.proximity();
     }
-  } else if (message.has_done() && (kind == pb::ClientMessage::kGrab || kind == pb::ClientMessage::kRelease)) {
+  } else if (message.has_done() &&
+             (kind == pb::ClientMessage::kGrab || kind == pb::ClientMessage::kRelease)) {
     queued_.push_front(makeRequest([](pb::ClientMessage& m) { m.mutable_list_objects(); }));
   }
 }

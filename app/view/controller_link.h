@@ -26,13 +26,13 @@ struct LinkState {
   bool connected = false;
   std::string error;  ///< why the link is down, or the last refused request's message (one line)
   pb::HelloReply hello;
-  std::vector<pb::ObjectInfo> objects;        ///< moving first, in index order
-  std::optional<pb::FrameUpdate> frame;       ///< the newest
-  std::optional<pb::Statistics> statistics;   ///< the newest
-  std::optional<pb::Parameters> parameters;   ///< in force
-  std::optional<pb::LoadProgress> loading;    ///< while a load (or a rebuild) runs
+  std::vector<pb::ObjectInfo> objects;                  ///< moving first, in index order
+  std::optional<pb::FrameUpdate> frame;                 ///< the newest
+  std::optional<pb::Statistics> statistics;             ///< the newest
+  std::optional<pb::Parameters> parameters;             ///< in force
+  std::optional<pb::LoadProgress> loading;              ///< while a load (or a rebuild) runs
   std::vector<std::optional<pb::Proximity>> proximity;  ///< per moving object, the newest
-  std::uint64_t revision = 0;                 ///< bumps with every change
+  std::uint64_t revision = 0;                           ///< bumps with every change
 };
 
 struct LinkOptions {
@@ -40,10 +40,10 @@ struct LinkOptions {
   std::uint16_t port = 7400;
   std::string token;
   std::string clientName = "voxhap view";
-  double updateRateHz = 60.0;            ///< frame updates (the window's rate is enough)
-  double statisticsPeriodS = 0.25;       ///< how often to ask for statistics
-  double proximityPeriodS = 0.1;         ///< how often to ask for each moving object's proximity
-  double proximityWithinVoxels = 4.0;    ///< near static voxels listed, in static voxels
+  double updateRateHz = 60.0;          ///< frame updates (the window's rate is enough)
+  double statisticsPeriodS = 0.25;     ///< how often to ask for statistics
+  double proximityPeriodS = 0.1;       ///< how often to ask for each moving object's proximity
+  double proximityWithinVoxels = 4.0;  ///< near static voxels listed, in static voxels
   std::chrono::milliseconds connectTimeout{5000};
 };
 

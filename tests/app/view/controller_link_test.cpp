@@ -58,8 +58,8 @@ TEST_F(ControllerLinkTest, TheStateFillsInAndQueuedRequestsReachTheController) {
   const auto controller = startController(true);
   ControllerLink link(to(*controller));
   const LinkState ready = waitFor(link, [](const LinkState& s) {
-    return s.connected && !s.objects.empty() && s.frame && s.parameters && s.statistics && !s.proximity.empty() &&
-           s.proximity[0];
+    return s.connected && !s.objects.empty() && s.frame && s.parameters && s.statistics &&
+           !s.proximity.empty() && s.proximity[0];
   });
   ASSERT_TRUE(ready.connected) << ready.error;
   EXPECT_NE(ready.hello.scene().find("ball-and-socket"), std::string::npos);
@@ -97,8 +97,9 @@ TEST_F(ControllerLinkTest, TheStateFillsInAndQueuedRequestsReachTheController) {
             std::string::npos);
 
   link.release("ball");
-  EXPECT_EQ(waitFor(link, [](const LinkState& s) { return s.objects[0].held_by().empty(); }).objects[0].held_by(),
-            "");
+  EXPECT_EQ(
+      waitFor(link, [](const LinkState& s) { return s.objects[0].held_by().empty(); }).objects[0].held_by(),
+      "");
   link.shutdown();
   const LinkState closed = waitFor(link, [](const LinkState& s) { return !s.connected; });
   EXPECT_FALSE(closed.connected);
