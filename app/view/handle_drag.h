@@ -30,7 +30,8 @@ class HandleDrag {
 public:
   /// Starts a drag of a handle at `startWorld`, grabbed by the point `anchorWorld` (on the
   /// object, under the cursor), with the cursor at `startPx` (window pixels, y down).
-  HandleDrag(const DragView& view, const Pose& startWorld, const glm::dvec3& anchorWorld, const glm::dvec2& startPx);
+  HandleDrag(const DragView& view, const Pose& startWorld, const glm::dvec3& anchorWorld,
+             const glm::dvec2& startPx);
 
   /// The handle pose for the cursor at `cursorPx`, moved from the start in `mode`. A new
   /// mode mid-drag starts a new drag from the pose reached (the window's job).
