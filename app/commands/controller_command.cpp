@@ -1,11 +1,9 @@
 // `voxhap controller`: the haptic controller process (controller/controller_run.h).
 
-#include <fstream>
-#include <sstream>
-
 #include <CLI/CLI.hpp>
 
 #include "app/cli/command.h"
+#include "app/cli/endpoint_options.h"
 #include "app/cli/option_values.h"
 #include "app/commands/commands.h"
 #include "app/controller/controller_run.h"
@@ -15,31 +13,6 @@
 
 namespace voxhap::cli {
 namespace {
-
-/// "HOST:PORT" (an IPv4 address or a bracketed IPv6 one) for --listen.
-void parseListen(const std::string& text, ControllerOptions& options) {
-  const std::size_t colon = text.rfind(':');
-  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size())
-    throw UsageError("--listen wants HOST:PORT, e.g. 127.0.0.1:7400, not '" + text + "'");
-  std::string host = text.substr(0, colon);
-  if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
-  const std::uint64_t port = parseUnsigned(text.substr(colon + 1), "listen");
-  if (port > 65535) throw UsageError("--listen: port " + std::to_string(port) + " is beyond 65535");
-  options.listenHost = host;
-  options.listenPort = static_cast<std::uint16_t>(port);
-}
-
-/// The token in `file`: its bytes without the trailing line end.
-std::string readToken(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("--token: cannot read " + file);
-  std::ostringstream s;
-  s << in.rdbuf();
-  std::string token = s.str();
-  while (!token.empty() && (token.back() == '\n' || token.back() == '\r')) token.pop_back();
-  if (token.empty()) throw Error("--token: " + file + " is empty");
-  return token;
-}
 
 /// What `voxhap controller` was given.
 struct ControllerArgs {
@@ -67,8 +40,12 @@ int runControllerCommand(const ControllerArgs& args, const CommandContext& c) {
     throw UsageError("--device wants script:FILE, hand:FILE or spacemouse[:/dev/hidrawN], not '" + d + "'");
   if (!args.device.empty() && options.scene.empty()) throw UsageError("--device wants a SCENE");
   options.model = sceneModelOptions(args.sim, c.console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
-  if (args.listen) parseListen(*args.listen, options);
-  if (args.tokenFile) options.token = readToken(*args.tokenFile);
+  if (args.listen) {
+    const HostPort listen = parseHostPort(*args.listen, "--listen");
+    options.listenHost = listen.host;
+    options.listenPort = listen.port;
+  }
+  if (args.tokenFile) options.token = readTokenFile(*args.tokenFile, "--token");
   options.device = args.device;
   options.durationS = args.durationS;
   options.realtime = !args.noRealtime;

@@ -27,7 +27,7 @@ TEST_F(ScenePickerTest, TheFirstObjectAlongTheRayIsPickedWhereItIsMet) {
   const ScenePicker picker(scene_);
   const auto down = picker.pick({0.0, 0.0, 1.0}, {0.0, 0.0, -2.0}, poses_);  // a direction of any length
   ASSERT_TRUE(down);
-  EXPECT_EQ(down->object, 1u);  // the box's top, before the plate
+  EXPECT_EQ(down->object, 1u);                  // the box's top, before the plate
   EXPECT_NEAR(down->pointWorld.z, 0.03, 1e-6);  // Embree works in float
   EXPECT_NEAR(down->distanceM, 0.97, 1e-6);
   const auto beside = picker.pick({0.03, 0.0, 1.0}, {0.0, 0.0, -1.0}, poses_);
