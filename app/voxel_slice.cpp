@@ -75,11 +75,12 @@ SliceLayout sliceLayout(const Voxmap& voxmap, const SliceSpec& slice) {
   return layout;
 }
 
-RgbImage drawSlice(const Voxmap& voxmap, const SliceSpec& slice, const SliceLayout& layout) {
+render::RgbImage drawSlice(const Voxmap& voxmap, const SliceSpec& slice, const SliceLayout& layout) {
   const int px = layout.pixelsPerVoxel;
   const int panelW = layout.widthVoxels * px;
   const int panelH = layout.heightVoxels * px;
-  RgbImage image(kFieldCount * panelW + (kFieldCount - 1) * layout.gapPx, panelH, kGap[0], kGap[1], kGap[2]);
+  render::RgbImage image(kFieldCount * panelW + (kFieldCount - 1) * layout.gapPx, panelH, kGap[0], kGap[1],
+                         kGap[2]);
   const auto [right, up] = planeAxes(slice.axis);
   const VoxelEncoding& encoding = voxmap.encoding();
   std::uint8_t colour[3];

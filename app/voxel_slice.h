@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "app/png_writer.h"
 #include "haptics/voxel/voxmap.h"
+#include "render/png_image.h"
 
 namespace voxhap::cli {
 
@@ -35,6 +35,6 @@ SliceLayout sliceLayout(const Voxmap& voxmap, const SliceSpec& slice);
 
 /// Draws the three fields of the layer; panels left to right surface, edge, vertex; in
 /// each, the first other axis (y for x, x for y and z) runs right, the second runs up.
-RgbImage drawSlice(const Voxmap& voxmap, const SliceSpec& slice, const SliceLayout& layout);
+render::RgbImage drawSlice(const Voxmap& voxmap, const SliceSpec& slice, const SliceLayout& layout);
 
 }  // namespace voxhap::cli

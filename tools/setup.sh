@@ -15,7 +15,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 packages=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libembree-dev libopenmesh-dev
-  libglfw3-dev libgl-dev libhidapi-dev libusb-1.0-0-dev libpng-dev libxxhash-dev
+  libglfw3-dev libgl-dev libepoxy-dev libhidapi-dev libusb-1.0-0-dev libpng-dev libxxhash-dev
   libasio-dev libprotobuf-dev protobuf-compiler python3-protobuf libsodium-dev
   libgtest-dev libgmock-dev libbenchmark-dev clang-format umockdev
   xvfb xauth libgl1-mesa-dri

@@ -114,8 +114,8 @@ int runVoxelize(const VoxelizeArgs& args, const CommandContext& c) {
   if (slice) {
     const std::string& png = *args.png;
     const SliceLayout layout = sliceLayout(result.voxelized.voxmap, *slice);
-    const RgbImage image = drawSlice(result.voxelized.voxmap, *slice, layout);
-    writePng(png, image);
+    const render::RgbImage image = drawSlice(result.voxelized.voxmap, *slice, layout);
+    render::writePng(png, image);
     json["slice"] = {{"axis", std::string(1, "xyz"[slice->axis])},
                      {"coordinate_m", slice->coordinateM},
                      {"layer", layout.layer},

@@ -1,4 +1,4 @@
-#include "app/png_writer.h"
+#include "render/png_image.h"
 
 #include <cerrno>
 #include <csetjmp>
@@ -11,7 +11,7 @@
 
 #include "haptics/core/error.h"
 
-namespace voxhap::cli {
+namespace voxhap::render {
 namespace {
 
 /// Writes the PNG stream to an open file; returns libpng's error message, or "" on success.
@@ -60,6 +60,12 @@ void RgbImage::set(int x, int y, const std::uint8_t (&colour)[3]) {
   std::memcpy(&rgb[at], colour, 3);
 }
 
+std::array<std::uint8_t, 3> RgbImage::at(int x, int y) const {
+  const std::size_t i =
+      (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
+  return {rgb[i], rgb[i + 1], rgb[i + 2]};
+}
+
 void writePng(const std::filesystem::path& file, const RgbImage& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() !=
@@ -88,4 +94,4 @@ void writePng(const std::filesystem::path& file, const RgbImage& image) {
   }
 }
 
-}  // namespace voxhap::cli
+}  // namespace voxhap::render
