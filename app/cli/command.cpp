@@ -228,6 +228,7 @@ std::unique_ptr<CommandTree> voxhapCommands() {
   addBenchCommands(*tree);
   addDemoCommand(*tree);
   addControllerCommand(*tree);
+  addViewCommand(*tree);
   return tree;
 }
 

@@ -16,7 +16,8 @@ HostPort parseHostPort(const std::string& text, const std::string& option) {
   endpoint.host = text.substr(0, colon);
   if (endpoint.host.size() > 2 && endpoint.host.front() == '[' && endpoint.host.back() == ']')
     endpoint.host = endpoint.host.substr(1, endpoint.host.size() - 2);
-  const std::uint64_t port = parseUnsigned(text.substr(colon + 1), option.substr(option.find_first_not_of('-')));
+  const std::uint64_t port =
+      parseUnsigned(text.substr(colon + 1), option.substr(option.find_first_not_of('-')));
   if (port > 65535) throw UsageError(option + ": port " + std::to_string(port) + " is beyond 65535");
   endpoint.port = static_cast<std::uint16_t>(port);
   return endpoint;

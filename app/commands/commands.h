@@ -19,5 +19,7 @@ void addBenchCommands(CommandTree& tree);
 void addDemoCommand(CommandTree& tree);
 /// `voxhap controller`: the haptic controller serving front ends.
 void addControllerCommand(CommandTree& tree);
+/// `voxhap view`: the front end's window.
+void addViewCommand(CommandTree& tree);
 
 }  // namespace voxhap::cli

@@ -108,7 +108,9 @@ void ControllerLink::run() {
     pb::ClientMessage subscribe;
     subscribe.mutable_subscribe()->set_rate_hz(options_.updateRateHz);
     sendTracked(subscribe);
-    sendTracked(makeRequest([](pb::ClientMessage& m) { m.mutable_set_parameters(); }));
+    // a controller without a scene has no parameters yet: they come with the load
+    if (!state().hello.scene().empty())
+      sendTracked(makeRequest([](pb::ClientMessage& m) { m.mutable_set_parameters(); }));
     Clock::time_point nextStatistics = Clock::now();
     Clock::time_point nextProximity = Clock::now();
     for (;;) {
@@ -200,8 +202,9 @@ void ControllerLink::handle(const pb::ServerMessage& message) {
     const auto moving = static_cast<std::size_t>(std::count_if(
         state_.objects.begin(), state_.objects.end(), [](const pb::ObjectInfo& o) { return o.moving(); }));
     if (kind == pb::ClientMessage::kLoadScene) {
-      // a new scene: its parameters, its proximity
+      // a new scene: its parameters, its proximity, and the errors before it are past
       state_.loading.reset();
+      state_.error.clear();
       state_.proximity.assign(moving, std::nullopt);
       proximityUnavailable_ = false;
       state_.frame.reset();
