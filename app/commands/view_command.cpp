@@ -31,7 +31,8 @@ struct ViewArgs {
 /// "WxH" in pixels, each 16 to 8192.
 glm::ivec2 parseSize(const std::string& text) {
   const std::size_t x = text.find('x');
-  if (x == std::string::npos) throw UsageError("--size wants WIDTHxHEIGHT, e.g. 1280x720, not '" + text + "'");
+  if (x == std::string::npos)
+    throw UsageError("--size wants WIDTHxHEIGHT, e.g. 1280x720, not '" + text + "'");
   const std::uint64_t w = parseUnsigned(text.substr(0, x), "size");
   const std::uint64_t h = parseUnsigned(text.substr(x + 1), "size");
   if (w < 16 || h < 16 || w > 8192 || h > 8192)
@@ -47,7 +48,8 @@ int runViewCommand(const ViewArgs& args, const CommandContext& c) {
     options.connect = parseHostPort(*args.connect, "--connect");
     if (!args.moving.empty()) throw UsageError("--move is the controller's to choose with --connect");
   } else {
-    if (args.scene.empty()) throw UsageError("view wants a SCENE, or --connect HOST:PORT to a running controller");
+    if (args.scene.empty())
+      throw UsageError("view wants a SCENE, or --connect HOST:PORT to a running controller");
     if (args.tokenFile) throw UsageError("--token goes with --connect");
   }
   if (args.tokenFile) options.token = readTokenFile(*args.tokenFile, "--token");
@@ -111,13 +113,15 @@ void addViewCommand(CommandTree& tree) {
                     [&moving = args->moving](const std::string& name) { moving.push_back(name); });
   command.add_option("--connect", args->connect, "a running controller instead of one in this process")
       ->type_name("HOST:PORT");
-  command.add_option("--token", args->tokenFile, "the controller's token (with --connect)")->type_name("FILE");
+  command.add_option("--token", args->tokenFile, "the controller's token (with --connect)")
+      ->type_name("FILE");
   command.add_option("--device", args->device, "grab the first moving part with this device once loaded")
       ->type_name("script:FILE|hand:FILE|spacemouse");
   SimOptions& sim = args->sim;
   addSimOptions(command, sim, {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::DeviceProfile});
   command.add_flag("--passive", args->passive, "see, never grab or change anything");
-  command.add_flag("--no-static-cache", args->noCache, "draw the static parts every frame (no FlyThru cache)");
+  command.add_flag("--no-static-cache", args->noCache,
+                   "draw the static parts every frame (no FlyThru cache)");
   command.add_flag("--no-realtime", args->noRealtime, "the in-process controller does not try SCHED_FIFO");
   command.add_option("--screenshot", args->screenshot, "draw headless and write the last frame to this PNG")
       ->type_name("FILE.png");

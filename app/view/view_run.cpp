@@ -1,7 +1,5 @@
 #include "app/view/view_run.h"
 
-#include <GLFW/glfw3.h>
-
 #include <algorithm>
 #include <chrono>
 #include <future>
@@ -11,6 +9,7 @@
 #include <set>
 #include <thread>
 
+#include <GLFW/glfw3.h>
 #include <nlohmann/json.hpp>
 
 #include "app/controller/inprocess_controller.h"
@@ -42,7 +41,8 @@ constexpr double kZoomPerNotch = 0.9;
 Pose poseOf(const pb::Pose& p) {
   Pose pose;
   pose.position = {p.position_m().x(), p.position_m().y(), p.position_m().z()};
-  pose.orientation = quatWxyz(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
+  pose.orientation =
+      quatWxyz(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
   return pose;
 }
 
@@ -56,9 +56,9 @@ struct WindowInput {
   bool leftPressed = false;  ///< went down this frame
   int mods = 0;              ///< GLFW_MOD_* at the last button or key
   double scrollNotches = 0.0;
-  bool frameKey = false;   ///< F
-  bool cacheKey = false;   ///< C toggles the static cache
-  bool closeKey = false;   ///< Esc
+  bool frameKey = false;  ///< F
+  bool cacheKey = false;  ///< C toggles the static cache
+  bool closeKey = false;  ///< Esc
 };
 
 WindowInput& inputOf(GLFWwindow* window) {
@@ -139,8 +139,8 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     linkOptions.port = controller->port();
   }
   view::ControllerLink link(linkOptions);
-  const view::LinkState hello =
-      waitForLink(link, [](const view::LinkState& s) { return s.connected; }, 30s, "no hello from the controller");
+  const view::LinkState hello = waitForLink(
+      link, [](const view::LinkState& s) { return s.connected; }, 30s, "no hello from the controller");
 
   // this machine's copy of the scene, for drawing and picking
   const std::string sceneName = !options.scene.empty() ? options.scene : hello.hello.scene();
@@ -149,8 +149,8 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
   const Scene scene = loadScene(sceneName, kDefaultSeed, console);
   std::vector<std::string> moving = options.moving;
   if (options.connect) {
-    const view::LinkState listed =
-        waitForLink(link, [](const view::LinkState& s) { return !s.objects.empty(); }, 30s, "no object list");
+    const view::LinkState listed = waitForLink(
+        link, [](const view::LinkState& s) { return !s.objects.empty(); }, 30s, "no object list");
     moving.clear();
     for (const pb::ObjectInfo& o : listed.objects) {
       if (o.moving()) moving.push_back(o.name());
@@ -244,7 +244,8 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     std::vector<int> controllerIndex(moving.size(), -1);
     for (std::size_t k = 0; k < state.objects.size(); ++k) {
       const auto it = std::find(moving.begin(), moving.end(), state.objects[k].name());
-      if (state.objects[k].moving() && it != moving.end()) controllerIndex[it - moving.begin()] = static_cast<int>(k);
+      if (state.objects[k].moving() && it != moving.end())
+        controllerIndex[it - moving.begin()] = static_cast<int>(k);
     }
     std::vector<Pose> movingPose(moving.size());
     const double voxelM = state.parameters ? state.parameters->voxel_size_m() : 0.0;
@@ -265,10 +266,12 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       if (static_cast<std::size_t>(k) < state.proximity.size() && state.proximity[k]) {
         const pb::Proximity& p = *state.proximity[k];
         if (static_cast<std::uint32_t>(p.vertex_distance_m_size()) == renderer.movingVertexCount(i)) {
-          renderer.setProximity(i, {p.vertex_distance_m().data(), static_cast<std::size_t>(p.vertex_distance_m_size())});
+          renderer.setProximity(
+              i, {p.vertex_distance_m().data(), static_cast<std::size_t>(p.vertex_distance_m_size())});
         }
         for (int c = 0; c + 2 < p.near_voxel_centre_m_size(); c += 3)
-          shadow.emplace_back(p.near_voxel_centre_m(c), p.near_voxel_centre_m(c + 1), p.near_voxel_centre_m(c + 2));
+          shadow.emplace_back(p.near_voxel_centre_m(c), p.near_voxel_centre_m(c + 1),
+                              p.near_voxel_centre_m(c + 2));
       }
     }
     renderer.setShadowVoxels(shadow, static_cast<float>(voxelM));
@@ -281,18 +284,23 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     // the mouse: the HUD first, then a drag of a held part, else the eye
     const bool hudHasMouse = hud.wantsMouse();
     GLFWwindow* w = window.window();
-    const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
-    const bool ctrl =
-        glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
-    const view::DragMode mode = shift ? view::DragMode::Depth : ctrl ? view::DragMode::Rotate : view::DragMode::Plane;
-    const view::DragView dragView{camera.viewMatrix(), render::OrbitCamera::kFovYRad, static_cast<double>(fb.y)};
+    const bool shift =
+        glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    const bool ctrl = glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                      glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+    const view::DragMode mode = shift  ? view::DragMode::Depth
+                                : ctrl ? view::DragMode::Rotate
+                                       : view::DragMode::Plane;
+    const view::DragView dragView{camera.viewMatrix(), render::OrbitCamera::kFovYRad,
+                                  static_cast<double>(fb.y)};
     if (input.leftPressed && !hudHasMouse && !options.passive) {
       std::vector<Pose> posesWorld(scene.objects.size());
       for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         if (const int i = movingIndexOf(o); i >= 0) posesWorld[o] = movingPose[static_cast<std::size_t>(i)];
       }
       const render::RayWorld ray = camera.rayThroughPixel(cursorPx, fb);
-      const std::optional<view::Pick> hit = picker.get()->pick(ray.originWorld, ray.directionWorld, posesWorld);
+      const std::optional<view::Pick> hit =
+          picker.get()->pick(ray.originWorld, ray.directionWorld, posesWorld);
       const int i = hit ? movingIndexOf(hit->object) : -1;
       if (i >= 0 && controllerIndex[static_cast<std::size_t>(i)] >= 0) {
         const std::string& name = moving[static_cast<std::size_t>(i)];
@@ -378,7 +386,8 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
         }
         if (static_cast<std::size_t>(k) < state.proximity.size() && state.proximity[k]) {
           const auto& d = state.proximity[k]->vertex_distance_m();
-          const float nearest = d.empty() ? std::numeric_limits<float>::infinity() : *std::min_element(d.begin(), d.end());
+          const float nearest =
+              d.empty() ? std::numeric_limits<float>::infinity() : *std::min_element(d.begin(), d.end());
           if (nearest > 0.0f && std::isfinite(nearest)) row.clearanceM = nearest;
         }
       }
@@ -403,7 +412,8 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       if (actions.couplingShare) set.set_coupling_stiffness_share(*actions.couplingShare);
       if (set.ByteSizeLong() > 0) link.setParameters(set);
     }
-    if (actions.frameScene) camera.frame(renderer.sceneBounds(), static_cast<double>(fb.x) / std::max(1, fb.y));
+    if (actions.frameScene)
+      camera.frame(renderer.sceneBounds(), static_cast<double>(fb.x) / std::max(1, fb.y));
 
     const Clock::time_point frameEnd = Clock::now();
     const double frameS = std::chrono::duration<double>(frameEnd - frameStart).count();
@@ -457,11 +467,11 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     out << j.dump(2) << "\n";
     return;
   }
-  out << std::fixed << std::setprecision(1) << "scene            " << scene.sourceName << "\nfirst frame      "
-      << firstFrameS.value_or(0.0) << " s; scene shown at " << sceneShownS.value_or(0.0) << " s\nframes           "
-      << cached.frames << " cached at " << cached.fps() << " fps, " << uncached.frames << " uncached at "
-      << uncached.fps() << " fps\nstatic cache     " << r.cache.redraws << " redraws, " << r.cache.reuses
-      << " reuses\n";
+  out << std::fixed << std::setprecision(1) << "scene            " << scene.sourceName
+      << "\nfirst frame      " << firstFrameS.value_or(0.0) << " s; scene shown at "
+      << sceneShownS.value_or(0.0) << " s\nframes           " << cached.frames << " cached at "
+      << cached.fps() << " fps, " << uncached.frames << " uncached at " << uncached.fps()
+      << " fps\nstatic cache     " << r.cache.redraws << " redraws, " << r.cache.reuses << " reuses\n";
 }
 
 }  // namespace voxhap::cli

@@ -32,11 +32,11 @@ struct ViewOptions {
   /// Once the scene is loaded, the first moving object is grabbed with this device (a
   /// Grab's device string: script:FILE, hand:FILE, spacemouse); empty: none.
   std::string device;
-  bool staticCache = true;          ///< FlyThru: static parts drawn once while the eye is still
+  bool staticCache = true;                ///< FlyThru: static parts drawn once while the eye is still
   std::optional<std::string> screenshot;  ///< headless: a hidden window, this PNG after `frames`
-  int frames = 60;                  ///< frames drawn before the screenshot (after loading)
+  int frames = 60;                        ///< frames drawn before the screenshot (after loading)
   glm::ivec2 sizePx{1280, 720};
-  bool json = false;                ///< the summary as one JSON document
+  bool json = false;  ///< the summary as one JSON document
 };
 
 /// Runs the window until it is closed (or the screenshot is written), then prints a

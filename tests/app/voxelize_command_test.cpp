@@ -8,14 +8,15 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <png.h>
 
 #include "support/cli_runner.h"
+#include "support/png_decode.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using voxhap::test::CliRun;
+using voxhap::test::decodePng;
 using voxhap::test::lineCount;
 using voxhap::test::slurp;
 
@@ -33,30 +34,6 @@ protected:
     return nlohmann::json::parse(r.out);  // throws unless stdout is exactly one document
   }
 };
-
-/// A PNG decoded to 8-bit RGB, or width 0 when libpng cannot read it.
-struct Decoded {
-  png_uint_32 width = 0;
-  png_uint_32 height = 0;
-  std::vector<png_byte> rgb;
-  std::array<int, 3> at(png_uint_32 x, png_uint_32 y) const {
-    const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
-    return {rgb[i], rgb[i + 1], rgb[i + 2]};
-  }
-};
-
-Decoded decodePng(const fs::path& file) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  Decoded out;
-  if (!png_image_begin_read_from_file(&image, file.c_str())) return out;
-  image.format = PNG_FORMAT_RGB;
-  out.rgb.resize(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr)) return out;
-  out.width = image.width;
-  out.height = image.height;
-  return out;
-}
 
 std::uint32_t bigEndian32(const std::string& bytes, std::size_t at) {
   std::uint32_t v = 0;
@@ -196,13 +173,13 @@ TEST_F(VoxelizeCommand, SliceIsAPngOfThreePanelsOfTheGridsLayer) {
   // decoded: far in the corner, interior at the ball's axis in both the surface and the
   // edge panel, a white surface voxel where the sphere (21.93 mm across at z = 12 mm)
   // cuts the x axis, in voxel floor(21.93 / 0.35) = 62
-  const Decoded image = decodePng(dir_ / "ball.png");
+  const voxhap::test::DecodedPng image = decodePng(dir_ / "ball.png");
   ASSERT_EQ(image.width, width);
   ASSERT_EQ(image.height, height);
   const auto pixelX = [&](int voxel, int panel) {
-    return static_cast<png_uint_32>((voxel - gridStart) * 3 + 1 + panel * (576 + 8));
+    return static_cast<std::uint32_t>((voxel - gridStart) * 3 + 1 + panel * (576 + 8));
   };
-  const auto pixelY = static_cast<png_uint_32>((191 - (0 - gridStart)) * 3 + 1);  // y = 0, up is up
+  const auto pixelY = static_cast<std::uint32_t>((191 - (0 - gridStart)) * 3 + 1);  // y = 0, up is up
   EXPECT_EQ(image.at(0, 0), (std::array<int, 3>{28, 28, 32}));
   EXPECT_EQ(image.at(pixelX(0, 0), pixelY), (std::array<int, 3>{45, 80, 170}));
   EXPECT_EQ(image.at(pixelX(0, 1), pixelY), (std::array<int, 3>{45, 80, 170}));
