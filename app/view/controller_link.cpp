@@ -128,7 +128,7 @@ void ControllerLink::run() {
           if (o.moving()) moving.push_back(o.name());
         }
         if (state_.parameters) withinM = options_.proximityWithinVoxels * state_.parameters->voxel_size_m();
-        proximityAsked = !proximityUnavailable_ && !state_.loading;
+        proximityAsked = !state_.proximityUnavailable && !state_.loading;
       }
       for (pb::ClientMessage& request : requests) sendTracked(std::move(request));
       for (const auto& [object, pose] : moves) {
@@ -189,7 +189,7 @@ void ControllerLink::handle(const pb::ServerMessage& message) {
   if (message.has_error()) {
     // a session without proximity (no static scene, or paged voxels) says so once
     if (kind == pb::ClientMessage::kGetProximity) {
-      proximityUnavailable_ = true;
+      state_.proximityUnavailable = true;
     } else {
       state_.error = message.error().message();
     }
@@ -206,7 +206,7 @@ void ControllerLink::handle(const pb::ServerMessage& message) {
       state_.loading.reset();
       state_.error.clear();
       state_.proximity.assign(moving, std::nullopt);
-      proximityUnavailable_ = false;
+      state_.proximityUnavailable = false;
       state_.frame.reset();
       queued_.push_front(makeRequest([](pb::ClientMessage& m) { m.mutable_set_parameters(); }));
     }

@@ -32,7 +32,8 @@ struct LinkState {
   std::optional<pb::Parameters> parameters;             ///< in force
   std::optional<pb::LoadProgress> loading;              ///< while a load (or a rebuild) runs
   std::vector<std::optional<pb::Proximity>> proximity;  ///< per moving object, the newest
-  std::uint64_t revision = 0;                           ///< bumps with every change
+  bool proximityUnavailable = false;  ///< the session has none (no static scene, paged voxels)
+  std::uint64_t revision = 0;         ///< bumps with every change
 };
 
 struct LinkOptions {
@@ -84,8 +85,7 @@ private:
   bool stopping_ = false;
   // the link thread's own
   std::map<std::uint64_t, pb::ClientMessage::RequestCase> pending_;  ///< sent, reply awaited
-  int proximityPending_ = 0;           ///< get_proximity requests awaiting replies
-  bool proximityUnavailable_ = false;  ///< the session has none (until the next load)
+  int proximityPending_ = 0;  ///< get_proximity requests awaiting replies
   std::thread thread_;
 };
 

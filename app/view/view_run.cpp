@@ -420,7 +420,12 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     frameStart = frameEnd;
     if (!firstFrameS) firstFrameS = std::chrono::duration<double>(frameEnd - started).count();
     fpsSmoothed = fpsSmoothed == 0.0 ? 1.0 / frameS : 0.9 * fpsSmoothed + 0.1 / frameS;
-    const bool shown = state.frame && !state.loading && !state.objects.empty();
+    // the scene is shown once its poses and, where the session has them, proximity came
+    const bool proximityShown =
+        state.proximityUnavailable ||
+        (!state.proximity.empty() && std::all_of(state.proximity.begin(), state.proximity.end(),
+                                                 [](const auto& p) { return p.has_value(); }));
+    const bool shown = state.frame && !state.loading && !state.objects.empty() && proximityShown;
     if (shown && !sceneShownS) sceneShownS = std::chrono::duration<double>(frameEnd - started).count();
     if (shown) {
       FrameTally& tally = useCache ? cached : uncached;

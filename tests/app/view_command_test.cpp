@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -35,9 +36,11 @@ protected:
 
 TEST_F(ViewCommand, UsageErrorsExitTwo) {
   for (const std::vector<std::string>& args :
-       {std::vector<std::string>{"view"}, {"view", "peg-in-hole", "--frames", "3"},
+       {std::vector<std::string>{"view"},
+        {"view", "peg-in-hole", "--frames", "3"},
         {"view", "peg-in-hole", "--screenshot", "x.png", "--size", "10x10"},
-        {"view", "peg-in-hole", "--token", "t"}, {"view", "--connect", "nowhere"},
+        {"view", "peg-in-hole", "--token", "t"},
+        {"view", "--connect", "nowhere"},
         {"view", "peg-in-hole", "--passive", "--device", "spacemouse"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 2) << args.back() << "\n" << r.err;
@@ -49,8 +52,13 @@ TEST_F(ViewCommand, UsageErrorsExitTwo) {
 
 TEST_F(ViewCommand, AHeadlessScreenshotShowsTheSceneTheSameWithAndWithoutTheStaticCache) {
   if (!haveXvfb()) GTEST_SKIP() << "no /usr/bin/xvfb-run (apt-get install xvfb xauth)";
-  const std::vector<std::string> common = {"peg-in-hole", "--voxel-size", "1mm", "--no-realtime", "--frames", "5",
-                                           "--size", "640x480", "--json"};
+  // the peg held where the scene puts it, so that both pictures see it in the same place
+  { std::ofstream(dir_ / "hold.txt") << "0 1 0 0 0 0 0 0\n1000 1 0 0 0 0 0 0\n"; }
+  const std::vector<std::string> common = {
+      "peg-in-hole",   "--voxel-size", "1mm",
+      "--no-realtime", "--device",     "script:" + (dir_ / "hold.txt").string(),
+      "--frames",      "60",           "--size",
+      "640x480",       "--json"};
   std::vector<std::string> cachedArgs = common;
   cachedArgs.insert(cachedArgs.end(), {"--screenshot", (dir_ / "cached.png").string()});
   std::vector<std::string> fullArgs = common;
@@ -59,9 +67,10 @@ TEST_F(ViewCommand, AHeadlessScreenshotShowsTheSceneTheSameWithAndWithoutTheStat
   const nlohmann::json full = viewHeadless(fullArgs);
   ASSERT_FALSE(cached.empty());
   ASSERT_FALSE(full.empty());
-  EXPECT_EQ(cached.at("frames_cached"), 5);
-  EXPECT_GE(cached.at("cache_reuses").get<int>(), 4);  // drawn once, reused while the eye stays
-  EXPECT_EQ(full.at("frames_uncached"), 5);
+  EXPECT_EQ(cached.at("frames_cached"), 60);
+  EXPECT_GE(cached.at("cache_reuses").get<int>(), 59)
+      << cached.dump();  // drawn once, reused while the eye stays
+  EXPECT_EQ(full.at("frames_uncached"), 60);
   EXPECT_EQ(full.at("cache_redraws"), 0);
 
   const DecodedPng a = decodePng(dir_ / "cached.png");
@@ -81,7 +90,10 @@ TEST_F(ViewCommand, AHeadlessScreenshotShowsTheSceneTheSameWithAndWithoutTheStat
       for (int c = 0; c < 3; ++c) differing += std::abs(p[c] - q[c]) > 2 ? 1 : 0;
     }
   }
-  EXPECT_LT(differing, 200) << "of " << 3 * 640 * 200 << " channel values";
+  // two runs of a real-time simulation: the held peg's contacts, hence its proximity
+  // colours, can differ a little between them (a few hundred values); a broken cache (static
+  // parts missing, moving ones not depth-tested) changes tens of thousands
+  EXPECT_LT(differing, 3840) << "of " << 3 * 640 * 200 << " channel values";
 }
 
 }  // namespace
