@@ -101,6 +101,7 @@ struct HudActions {
   /// "Frame the scene" pressed.
   bool frameScene = false;
 
+  /// Whether the user asked for anything.
   bool any() const noexcept {
     return grabObject || releaseObject || forceLayer || pointOffsetM || couplingShare || frameScene;
   }
