@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -22,8 +23,12 @@ class ViewCommand : public CliTest {
 protected:
   /// `voxhap view ARGS` under `xvfb-run -a`; its JSON summary (exit status checked).
   nlohmann::json viewHeadless(const std::vector<std::string>& args) {
-    // under LeakSanitizer: what Mesa keeps to the process's end is not ours
-    setenv("LSAN_OPTIONS", "suppressions=" VOXHAP_SOURCE_DIR "/tests/render/lsan.supp", 1);
+    // under AddressSanitizer the view runs without LeakSanitizer: Mesa's DRI driver, unloaded
+    // when GLFW terminates, leaves blocks LSan reports from an unknown module and no
+    // suppression can name (the HUD tests found it); the view's own parts (link, picker,
+    // in-process controller) are leak-checked in this process by their tests
+    const char* asan = std::getenv("ASAN_OPTIONS");
+    setenv("ASAN_OPTIONS", (std::string(asan ? asan : "") + ":detect_leaks=0").c_str(), 1);
     std::vector<std::string> all = {"-a", VOXHAP_EXE, "view"};
     all.insert(all.end(), args.begin(), args.end());
     ChildProcess view("/usr/bin/xvfb-run", all, dir_);
