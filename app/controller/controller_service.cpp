@@ -6,11 +6,13 @@
 #include "haptics/core/error.h"
 #include "haptics/device/motion_script.h"
 #include "haptics/device/simulated_hand_device.h"
+#include "net/frontend/pose_proto.h"
 
 namespace voxhap::controller {
 namespace {
 
 namespace pb = net::pb;
+using net::toProto;
 /// Farthest GetProximity lists static surface voxels, in static voxels (bounds the reply).
 constexpr int kMaxProximityVoxels = 16;
 /// Grab's device for the first SpaceMouse found, and the prefix that names one by path.
@@ -24,20 +26,6 @@ constexpr const char* kHandPrefix = "hand:";
 void fail(pb::ServerMessage& reply, const std::string& message, const std::string& field = {}) {
   reply.mutable_error()->set_message(message);
   reply.mutable_error()->set_field(field);
-}
-
-void toProto(const glm::dvec3& v, pb::Vec3& out) {
-  out.set_x(v.x);
-  out.set_y(v.y);
-  out.set_z(v.z);
-}
-
-void toProto(const Pose& pose, pb::Pose& out) {
-  toProto(pose.position, *out.mutable_position_m());
-  out.mutable_orientation()->set_w(pose.orientation.w);
-  out.mutable_orientation()->set_x(pose.orientation.x);
-  out.mutable_orientation()->set_y(pose.orientation.y);
-  out.mutable_orientation()->set_z(pose.orientation.z);
 }
 
 /// False after filling `reply` with an Error naming the size or offset out of range.
@@ -418,11 +406,7 @@ void ControllerService::moveHandle(std::uint64_t client, const pb::MoveHandle& r
          "object");
     return;
   }
-  const pb::Pose& p = request.handle();
-  Pose pose;
-  pose.position = {p.position_m().x(), p.position_m().y(), p.position_m().z()};
-  pose.orientation =
-      glm::dquat(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
+  const Pose pose = net::fromProto(request.handle());
   const double norm = glm::length(pose.orientation);
   if (!isFinite(pose) || std::abs(norm - 1.0) > 1e-6) {
     fail(reply, "the handle pose must be finite with a unit quaternion", "handle");

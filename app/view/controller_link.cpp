@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "haptics/core/error.h"
+#include "net/frontend/pose_proto.h"
 
 namespace voxhap::view {
 namespace {
@@ -133,15 +134,8 @@ void ControllerLink::run() {
       for (pb::ClientMessage& request : requests) sendTracked(std::move(request));
       for (const auto& [object, pose] : moves) {
         pb::ClientMessage m;
-        pb::MoveHandle& move = *m.mutable_move_handle();
-        move.set_object(object);
-        move.mutable_handle()->mutable_position_m()->set_x(pose.position.x);
-        move.mutable_handle()->mutable_position_m()->set_y(pose.position.y);
-        move.mutable_handle()->mutable_position_m()->set_z(pose.position.z);
-        move.mutable_handle()->mutable_orientation()->set_w(pose.orientation.w);
-        move.mutable_handle()->mutable_orientation()->set_x(pose.orientation.x);
-        move.mutable_handle()->mutable_orientation()->set_y(pose.orientation.y);
-        move.mutable_handle()->mutable_orientation()->set_z(pose.orientation.z);
+        m.mutable_move_handle()->set_object(object);
+        net::toProto(pose, *m.mutable_move_handle()->mutable_handle());
         sendTracked(std::move(m));
       }
       const Clock::time_point now = Clock::now();

@@ -18,6 +18,7 @@
 #include "app/view/handle_drag.h"
 #include "app/view/scene_picker.h"
 #include "haptics/core/error.h"
+#include "net/frontend/pose_proto.h"
 #include "render/gl_context.h"
 #include "render/hud.h"
 #include "render/orbit_camera.h"
@@ -38,14 +39,6 @@ constexpr double kProximityRangeVoxels = 5.0;
 /// A wheel notch zooms by this factor.
 constexpr double kZoomPerNotch = 0.9;
 
-Pose poseOf(const pb::Pose& p) {
-  Pose pose;
-  pose.position = {p.position_m().x(), p.position_m().y(), p.position_m().z()};
-  pose.orientation =
-      quatWxyz(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
-  return pose;
-}
-
 /// What GLFW told us between two frames (its callbacks run inside pollEvents).
 struct WindowInput {
   glm::dvec2 cursorPx{0.0};  ///< window coordinates, y down
@@ -54,7 +47,6 @@ struct WindowInput {
   bool rightDown = false;
   bool middleDown = false;
   bool leftPressed = false;  ///< went down this frame
-  int mods = 0;              ///< GLFW_MOD_* at the last button or key
   double scrollNotches = 0.0;
   bool frameKey = false;  ///< F
   bool cacheKey = false;  ///< C toggles the static cache
@@ -68,10 +60,9 @@ WindowInput& inputOf(GLFWwindow* window) {
 void installInput(GLFWwindow* window, WindowInput& input) {
   glfwSetWindowUserPointer(window, &input);
   glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { inputOf(w).cursorPx = {x, y}; });
-  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
     WindowInput& in = inputOf(w);
     const bool down = action == GLFW_PRESS;
-    in.mods = mods;
     if (button == GLFW_MOUSE_BUTTON_LEFT) {
       in.leftPressed = in.leftPressed || (down && !in.leftDown);
       in.leftDown = down;
@@ -80,9 +71,8 @@ void installInput(GLFWwindow* window, WindowInput& input) {
     if (button == GLFW_MOUSE_BUTTON_MIDDLE) in.middleDown = down;
   });
   glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) { inputOf(w).scrollNotches += dy; });
-  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
     WindowInput& in = inputOf(w);
-    in.mods = mods;
     if (action != GLFW_PRESS) return;
     if (key == GLFW_KEY_F) in.frameKey = true;
     if (key == GLFW_KEY_C) in.cacheKey = true;
@@ -257,7 +247,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       if (k < 0) continue;
       if (state.frame && k < state.frame->objects_size()) {
         const pb::ObjectState& o = state.frame->objects(k);
-        movingPose[i] = poseOf(o.pose());
+        movingPose[i] = net::fromProto(o.pose());
         renderer.setPose(i, movingPose[i]);
         const glm::dvec3 forceN(o.force_n().x(), o.force_n().y(), o.force_n().z());
         if (myGrabs.count(moving[i]) && glm::length(forceN) > 0.0)
@@ -307,7 +297,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
         const pb::ObjectState* o =
             state.frame ? &state.frame->objects(controllerIndex[static_cast<std::size_t>(i)]) : nullptr;
         // a new grab starts the client's handle at the object; a held one where it was left
-        lastHandle = myGrabs.count(name) && o && o->has_handle() ? poseOf(o->handle())
+        lastHandle = myGrabs.count(name) && o && o->has_handle() ? net::fromProto(o->handle())
                                                                  : movingPose[static_cast<std::size_t>(i)];
         if (!myGrabs.count(name)) {
           link.grab(name);
