@@ -26,7 +26,8 @@ inline void toProto(const Pose& pose, pb::Pose& out) {
 inline Pose fromProto(const pb::Pose& p) {
   Pose pose;
   pose.position = {p.position_m().x(), p.position_m().y(), p.position_m().z()};
-  pose.orientation = quatWxyz(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
+  pose.orientation =
+      quatWxyz(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
   return pose;
 }
 
