@@ -26,11 +26,16 @@ constexpr auto kHousekeepingPeriod = std::chrono::milliseconds(50);
 /// How long a stopping controller waits for its clients to take their last messages.
 constexpr auto kLastWrites = std::chrono::seconds(2);
 
+/// What a refusal's errno text says, or that nobody asked (--no-realtime).
+std::string why(const RealtimeOutcome& outcome) {
+  return " (" + (outcome.error.empty() ? std::string("not asked: --no-realtime") : outcome.error) + ")";
+}
+
 std::string realtimeLine(const RealtimeStatus& status) {
   std::string line = status.fifo.ok
                          ? "haptic thread under SCHED_FIFO priority " + std::to_string(status.fifoPriority)
-                         : "haptic thread without SCHED_FIFO (" + status.fifo.error + ")";
-  line += status.memoryLock.ok ? ", memory locked" : ", memory not locked (" + status.memoryLock.error + ")";
+                         : "haptic thread without SCHED_FIFO" + why(status.fifo);
+  line += status.memoryLock.ok ? ", memory locked" : ", memory not locked" + why(status.memoryLock);
   if (!status.fifo.ok) line += "; periods may stretch when the machine is busy";
   return line;
 }
