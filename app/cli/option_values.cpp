@@ -65,17 +65,41 @@ double parseLengthM(const std::string& text, const std::string& optionName, Leng
 }
 
 double parseSeconds(const std::string& text, const std::string& optionName) {
-  double seconds = -1.0;
-  try {
-    std::size_t used = 0;
-    seconds = std::stod(text, &used);
-    if (used != text.size()) seconds = -1.0;
-  } catch (const std::exception&) {
-    seconds = -1.0;
+  auto fail = [&]() -> double {
+    throw UsageError("--" + optionName + " wants a time ≥ 0 such as 2.5, 2.5s or 100ms, not '" + text + "'");
+  };
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (text.empty() || ec != std::errc()) return fail();
+  std::string unit(ptr, end);
+  unit.erase(0, unit.find_first_not_of(' '));
+  if (unit == "ms") {
+    value *= 1e-3;
+  } else if (unit != "s" && !unit.empty()) {
+    return fail();
   }
-  if (!(seconds >= 0.0) || !std::isfinite(seconds))
-    throw UsageError("--" + optionName + " wants seconds ≥ 0, got '" + text + "'");
-  return seconds;
+  if (!(value >= 0.0) || !std::isfinite(value)) return fail();
+  return value;
+}
+
+double parseFraction(const std::string& text, const std::string& optionName) {
+  auto fail = [&]() -> double {
+    throw UsageError("--" + optionName + " wants a share from 0 to 1 such as 0.05 or 5%, not '" + text + "'");
+  };
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (text.empty() || ec != std::errc()) return fail();
+  std::string unit(ptr, end);
+  unit.erase(0, unit.find_first_not_of(' '));
+  if (unit == "%") {
+    value *= 0.01;
+  } else if (!unit.empty()) {
+    return fail();
+  }
+  if (!(value >= 0.0 && value <= 1.0)) return fail();
+  return value;
 }
 
 namespace {

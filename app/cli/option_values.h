@@ -49,9 +49,14 @@ enum class LengthSign { Positive, Any };
 double parseLengthM(const std::string& text, const std::string& optionName,
                     LengthSign sign = LengthSign::Positive);
 
-/// Parses a duration in seconds for the option named in messages: a decimal number
-/// (as std::stod reads it), finite and ≥ 0. Throws UsageError on anything else.
+/// Parses a duration in seconds for the option named in messages: a decimal number,
+/// optionally followed (spaces allowed) by "s" or "ms", finite and ≥ 0; "2.5", "2.5s"
+/// and "2500ms" are the same. Throws UsageError on anything else.
 double parseSeconds(const std::string& text, const std::string& optionName);
+
+/// Parses a share from 0 to 1 for the option named in messages: a decimal number, or a
+/// percentage with "%" ("0.05" and "5%" are the same). Throws UsageError on anything else.
+double parseFraction(const std::string& text, const std::string& optionName);
 
 /// Turns the text of one value into its field; throws UsageError on a bad value.
 using SetFromText = std::function<void(const std::string& text)>;

@@ -68,8 +68,22 @@ TEST(OptionValues, ParsesBytesInPowersOf1024) {
 TEST(OptionValues, ParsesSecondsNotNegative) {
   EXPECT_DOUBLE_EQ(parseSeconds("0", "duration"), 0.0);
   EXPECT_DOUBLE_EQ(parseSeconds("2.5", "duration"), 2.5);
-  for (const char* bad : {"", "-1", "nan", "inf", "2s", "x"}) {
+  EXPECT_DOUBLE_EQ(parseSeconds("2.5s", "duration"), 2.5);
+  EXPECT_DOUBLE_EQ(parseSeconds("100 ms", "duration"), 0.1);
+  for (const char* bad : {"", "-1", "-5ms", "nan", "inf", "2h", "ms", "x", "2 s x"}) {
     EXPECT_NE(usageErrorOf([&] { parseSeconds(bad, "duration"); }).find("--duration"), std::string::npos)
+        << "'" << bad << "'";
+  }
+}
+
+TEST(OptionValues, ParsesSharesAsFractionsOrPercentages) {
+  EXPECT_DOUBLE_EQ(parseFraction("0.05", "loss"), 0.05);
+  EXPECT_DOUBLE_EQ(parseFraction("5%", "loss"), 0.05);
+  EXPECT_DOUBLE_EQ(parseFraction("100 %", "loss"), 1.0);
+  EXPECT_DOUBLE_EQ(parseFraction("0", "loss"), 0.0);
+  for (const char* bad : {"", "-0.1", "1.5", "150%", "nan", "5 percent", "%"}) {
+    EXPECT_NE(usageErrorOf([&] { parseFraction(bad, "loss"); }).find("--loss wants a share"),
+              std::string::npos)
         << "'" << bad << "'";
   }
 }
