@@ -21,5 +21,7 @@ void addDemoCommand(CommandTree& tree);
 void addControllerCommand(CommandTree& tree);
 /// `voxhap view`: the front end's window.
 void addViewCommand(CommandTree& tree);
+/// `voxhap relay`: a UDP forwarder that impairs the path, for trying peers on one machine.
+void addRelayCommand(CommandTree& tree);
 
 }  // namespace voxhap::cli
