@@ -100,7 +100,7 @@ int runRelayCommand(const RelayArgs& args, const CommandContext& c) {
 
 void addRelayCommand(CommandTree& tree) {
   CommandHelp help;
-  help.summary = "A UDP relay that delays, spreads, loses and duplicates datagrams, for trying peers.";
+  help.summary = "A UDP relay that delays, spreads, loses and duplicates datagrams, as a bad network would.";
   help.usage =
       "voxhap relay --to HOST:PORT [--listen HOST:PORT] [--delay TIME] [--jitter TIME] [--loss SHARE]\n"
       "       [--duplicate SHARE] [--seed N] [--duration TIME] [--json]";

@@ -27,6 +27,7 @@ TEST_F(VoxhapCli, HelpListsOnlyWorkingCommandsAndExitsZero) {
   EXPECT_NE(r.out.find("simulate"), std::string::npos);
   EXPECT_NE(r.out.find("bench"), std::string::npos);
   EXPECT_NE(r.out.find("controller"), std::string::npos);
+  EXPECT_NE(r.out.find("relay"), std::string::npos);
   EXPECT_EQ(r.out.find("peer"), std::string::npos);  // not written yet
 }
 
@@ -36,6 +37,7 @@ TEST_F(VoxhapCli, EveryCommandHasHelp) {
                                                                 {"scene", "generate", "--help"},
                                                                 {"demo", "--help"},
                                                                 {"controller", "--help"},
+                                                                {"relay", "--help"},
                                                                 {"voxelize", "--help"},
                                                                 {"simulate", "--help"},
                                                                 {"bench", "--help"},
