@@ -2,11 +2,28 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include <CLI/CLI.hpp>
 
 namespace voxhap::cli {
+
+namespace {
+
+/// The decimal number `text` starts with and what follows it, leading spaces dropped (its
+/// unit); none when it does not start with a number.
+std::optional<std::pair<double, std::string>> numberAndUnit(const std::string& text) {
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc()) return std::nullopt;
+  std::string unit(ptr, end);
+  unit.erase(0, unit.find_first_not_of(' '));
+  return std::pair{value, unit};
+}
+
+}  // namespace
 
 std::uint64_t parseUnsigned(const std::string& text, const std::string& optionName) {
   std::uint64_t value = 0;
@@ -24,12 +41,9 @@ std::uint64_t parseBytes(const std::string& text, const std::string& optionName)
     throw UsageError("--" + optionName + " wants a size such as 2GiB, 512MiB or 65536 (bytes), not '" + text +
                      "'");
   };
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (text.empty() || ec != std::errc()) return fail();
-  std::string unit(ptr, end);
-  unit.erase(0, unit.find_first_not_of(' '));
+  const auto parsed = numberAndUnit(text);
+  if (!parsed) return fail();
+  auto [value, unit] = *parsed;
   double scale = 0.0;
   if (unit.empty() || unit == "B") scale = 1.0;
   if (unit == "K" || unit == "KiB") scale = 1024.0;
@@ -46,12 +60,9 @@ double parseLengthM(const std::string& text, const std::string& optionName, Leng
   auto fail = [&](const std::string& why) -> double {
     throw UsageError("--" + optionName + " wants " + why + " such as " + example + ", not '" + text + "'");
   };
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (text.empty() || ec != std::errc()) return fail("a length");
-  std::string unit(ptr, end);
-  unit.erase(0, unit.find_first_not_of(' '));
+  const auto parsed = numberAndUnit(text);
+  if (!parsed) return fail("a length");
+  auto [value, unit] = *parsed;
   double scale = 1.0;
   if (unit == "mm") {
     scale = 1e-3;
@@ -68,12 +79,9 @@ double parseSeconds(const std::string& text, const std::string& optionName) {
   auto fail = [&]() -> double {
     throw UsageError("--" + optionName + " wants a time ≥ 0 such as 2.5, 2.5s or 100ms, not '" + text + "'");
   };
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (text.empty() || ec != std::errc()) return fail();
-  std::string unit(ptr, end);
-  unit.erase(0, unit.find_first_not_of(' '));
+  const auto parsed = numberAndUnit(text);
+  if (!parsed) return fail();
+  auto [value, unit] = *parsed;
   if (unit == "ms") {
     value *= 1e-3;
   } else if (unit != "s" && !unit.empty()) {
@@ -87,12 +95,9 @@ double parseFraction(const std::string& text, const std::string& optionName) {
   auto fail = [&]() -> double {
     throw UsageError("--" + optionName + " wants a share from 0 to 1 such as 0.05 or 5%, not '" + text + "'");
   };
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (text.empty() || ec != std::errc()) return fail();
-  std::string unit(ptr, end);
-  unit.erase(0, unit.find_first_not_of(' '));
+  const auto parsed = numberAndUnit(text);
+  if (!parsed) return fail();
+  auto [value, unit] = *parsed;
   if (unit == "%") {
     value *= 0.01;
   } else if (!unit.empty()) {
