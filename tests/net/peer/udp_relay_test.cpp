@@ -32,9 +32,10 @@ public:
     client_.bind(udp::endpoint(loopback(), 0));
     thread_ = std::thread([this] { io_.run(); });
   }
-  ~RelayFixture() {
+  ~RelayFixture() { stop(); }
+  void stop() {
     io_.stop();
-    thread_.join();
+    if (thread_.joinable()) thread_.join();
   }
   static asio::ip::address loopback() { return asio::ip::make_address("127.0.0.1"); }
 
@@ -53,10 +54,9 @@ public:
       return got;
     });
   }
+  /// The relay's counts, read once its thread has stopped.
   const UdpRelayCounts& counts() {
-    io_.stop();
-    thread_.join();
-    thread_ = std::thread([] {});
+    stop();
     return relay_->counts();
   }
 
