@@ -23,6 +23,18 @@ struct HandleInput {
   bool held = true;         ///< false: nothing holds the object this frame (no coupling wrench)
 };
 
+/// An object that a remote peer owns (type-1, DESIGN §8): its owner integrates it, and
+/// this peer moves it as a kinematic body to where the owner's stream puts it. It feels
+/// no force here (its contacts still push the local objects). Its step is held to its
+/// MaxTravel and projected onto the depth limits with its own mass like any other, so
+/// that no contact is skipped and nothing it squeezes is pressed into a third part: it
+/// then lags its stream, and catches up in the next frames once free. Its owner, whose
+/// peer simulates the same contact, stops it there too, one delay later.
+struct KinematicInput {
+  bool active = false;
+  RigidBodyState targetWorld;  ///< where the stream puts it at the frame's end
+};
+
 /// A wrench from outside the simulation on one moving object, world frame: the type-2
 /// coupling to remote copies of a shared object (DESIGN §8), a user's push.
 struct ExternalWrench {
@@ -39,6 +51,8 @@ struct FrameInputs {
   /// Per object, the gains of its coupling in place of the model's (a user's softer
   /// setting, scaledCouplingGains); empty: the model's.
   std::span<const CouplingGains> couplingGains;
+  /// Per object, whether a remote peer moves it this frame; empty, or one per object.
+  std::span<const KinematicInput> kinematic;
   /// When this frame began by the caller's clock: a paged voxmap's suspension is timed
   /// by it (paper §5.3). The frame itself reads no clock.
   std::chrono::steady_clock::time_point now{};

@@ -16,10 +16,12 @@ LocalSimulation::LocalSimulation(const SimModel& model, SimState initial,
       deviceHandles_(model.objects.size()) {}
 
 FrameStatus LocalSimulation::step(std::span<const HandleInput> handles,
-                                  std::span<const ExternalWrench> wrenches) noexcept {
+                                  std::span<const ExternalWrench> wrenches,
+                                  std::span<const KinematicInput> kinematic) noexcept {
   FrameInputs inputs;
   inputs.handles = handles;
   inputs.externalWrenches = wrenches;
+  inputs.kinematic = kinematic;
   return timed(inputs, {});
 }
 

@@ -21,10 +21,10 @@ public:
   /// From `state` (restored from a snapshot, or set up by a test).
   LocalSimulation(const SimModel& model, SimState state, std::shared_ptr<VoxelPager> staticPager = nullptr);
 
-  /// One frame: `handles` drive the coupled objects, `wrenches` push on them (each empty,
-  /// or one per object).
-  FrameStatus step(std::span<const HandleInput> handles = {},
-                   std::span<const ExternalWrench> wrenches = {}) noexcept;
+  /// One frame: `handles` drive the coupled objects, `wrenches` push on them, `kinematic`
+  /// moves those a remote peer owns (each empty, or one per object).
+  FrameStatus step(std::span<const HandleInput> handles = {}, std::span<const ExternalWrench> wrenches = {},
+                   std::span<const KinematicInput> kinematic = {}) noexcept;
   /// One frame driven by `devices` (one per object; nullptr: free), as stepWithDevices.
   FrameStatus stepWithDevices(std::span<HapticDevice* const> devices) noexcept;
 

@@ -169,6 +169,21 @@ void suspendOrResume(SimWorkspace& ws, bool suspend, std::chrono::steady_clock::
   if (seconds > kMaxSuspensionS) ws.stopped = true;
 }
 
+/// A kinematic body goes where its target says, when the target is a finite pose with a
+/// unit orientation; otherwise it stays and the frame says so.
+void moveKinematic(const RigidBodyState& target, RigidBodyState& body, FrameStatus& status) {
+  const bool unit = std::abs(glm::length(target.orientation) - 1.0) < 1e-6;
+  if (!isFinite(target.comWorld) || !isFinite(target.linearVelocityWorld) ||
+      !isFinite(target.angularVelocityWorld) || !unit) {
+    status |= kFrameNonFiniteZeroed;
+    return;
+  }
+  body.comWorld = target.comWorld;
+  body.orientation = target.orientation;
+  body.linearVelocityWorld = target.linearVelocityWorld;
+  body.angularVelocityWorld = target.angularVelocityWorld;
+}
+
 bool finite(const HandleInput& h) {
   return isFinite(h.poseWorld) && isFinite(h.velocity.linearWorld) && isFinite(h.velocity.angularWorld);
 }
@@ -291,7 +306,12 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
       }
     }
     ws.beforeStep[i] = body;
-    integrate(object.body, body, force, torque, model.dtS);
+    const bool kinematic = i < inputs.kinematic.size() && inputs.kinematic[i].active;
+    if (kinematic) {
+      moveKinematic(inputs.kinematic[i].targetWorld, body, status);
+    } else {
+      integrate(object.body, body, force, torque, model.dtS);
+    }
     if (body.skippedSteps != ws.beforeStep[i].skippedSteps) status |= kFrameNonFiniteZeroed;
     // an object without pairs has an infinite bound, which no scale makes finite
     const double bound = ws.travelBoundM[i];

@@ -1,5 +1,6 @@
-// What a frame takes from outside: external wrenches push objects as forces do, and a
-// non-finite input is dropped, reported, and harms nothing.
+// What a frame takes from outside: external wrenches push objects as forces do, a remote
+// peer's object moves as its stream says, and a non-finite input is dropped, reported,
+// and harms nothing.
 
 #include <cmath>
 #include <limits>
@@ -93,6 +94,77 @@ TEST(FrameInputs, AnObjectWithoutADeviceIsFreeWhereverItIs) {
   released.poseWorld.position.x = 0.0;
   EXPECT_EQ(sim.step(std::span(&released, 1)), kFrameOk);
   EXPECT_EQ(sim.state.bodies[0].comWorld, before.comWorld);
+}
+
+/// A free box 3 mm above the plate and, 4 mm above it, a smaller box that a remote
+/// peer moves (object 1, "upper").
+Scene boxUnderARemoteBox() {
+  Scene scene;
+  scene.objects.push_back(test::plate());
+  scene.objects.push_back(test::meshObject("lower", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m, test::at(0.0, 0.0, 0.006), glm::dvec3(0.01, 0.01, 0.003));
+  }));
+  scene.objects.push_back(test::meshObject("upper", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m, test::at(0.0, 0.0, 0.016), glm::dvec3(0.008, 0.008, 0.003));
+  }));
+  return scene;
+}
+
+SimModel remoteBoxModel(const Scene& scene) {
+  return test::freeModel(scene, {"lower", "upper"}, kVoxel, glm::dvec3(0.0));
+}
+
+TEST(FrameInputs, ARemoteObjectGoesWhereItsStreamSaysAndPushesTheLocalOnes) {
+  const Scene scene = boxUnderARemoteBox();
+  const SimModel model = remoteBoxModel(scene);
+  LocalSimulation sim(model);
+  std::vector<KinematicInput> kinematic(2);
+  kinematic[1].active = true;
+  kinematic[1].targetWorld = sim.state.bodies[1];
+  // sideways at 20 mm/s, away from everything: exactly where the stream says, turning too
+  kinematic[1].targetWorld.linearVelocityWorld = glm::dvec3(0.02, 0.0, 0.0);
+  for (int f = 1; f <= 100; ++f) {
+    kinematic[1].targetWorld.comWorld.x = 0.02 * f * model.dtS;
+    kinematic[1].targetWorld.orientation = glm::angleAxis(0.001 * f, glm::dvec3(0.0, 0.0, 1.0));
+    ASSERT_EQ(sim.step({}, {}, kinematic), kFrameOk);
+    ASSERT_EQ(sim.state.bodies[1].comWorld, kinematic[1].targetWorld.comWorld);
+    ASSERT_EQ(sim.state.bodies[1].orientation, kinematic[1].targetWorld.orientation);
+  }
+  EXPECT_EQ(sim.state.bodies[1].linearVelocityWorld, glm::dvec3(0.02, 0.0, 0.0));
+  EXPECT_EQ(sim.state.bodies[0].comWorld, makeSimState(model).bodies[0].comWorld);  // untouched
+
+  // then down onto the lower box at 50 mm/s and on, 10 mm past it: it pushes the lower box
+  // away (exact non-penetration of remote parts: NonPenetration.ARemotePart…), and lags
+  // its stream while it does
+  const double startZ = kinematic[1].targetWorld.comWorld.z;
+  kinematic[1].targetWorld.linearVelocityWorld = glm::dvec3(0.0, 0.0, -0.05);
+  std::uint32_t contacts = 0;
+  double lagM = 0.0;
+  for (int f = 1; f <= 300; ++f) {
+    kinematic[1].targetWorld.comWorld.z = startZ - 0.05 * f * model.dtS;
+    ASSERT_EQ(sim.step({}, {}, kinematic) & kFrameNonFiniteZeroed, 0);
+    contacts = std::max(contacts, sim.object(1).contacts);
+    lagM = std::max(lagM, sim.state.bodies[1].comWorld.z - kinematic[1].targetWorld.comWorld.z);
+  }
+  EXPECT_GT(contacts, 0u);
+  EXPECT_GT(glm::length(sim.state.bodies[0].comWorld - makeSimState(model).bodies[0].comWorld), 0.001);
+  EXPECT_GT(lagM, 0.001);
+}
+
+TEST(FrameInputs, ANonFiniteRemoteStateIsDroppedAndReported) {
+  const SimModel model = remoteBoxModel(boxUnderARemoteBox());
+  LocalSimulation sim(model);
+  std::vector<KinematicInput> kinematic(2);
+  kinematic[1].active = true;
+  kinematic[1].targetWorld = sim.state.bodies[1];
+  kinematic[1].targetWorld.comWorld.x = std::numeric_limits<double>::quiet_NaN();
+  const RigidBodyState before = sim.state.bodies[1];
+  EXPECT_EQ(sim.step({}, {}, kinematic), kFrameNonFiniteZeroed);
+  EXPECT_EQ(sim.state.bodies[1].comWorld, before.comWorld);
+  kinematic[1].targetWorld = before;
+  kinematic[1].targetWorld.orientation = glm::dquat(2.0, 0.0, 0.0, 0.0);  // not a rotation
+  EXPECT_EQ(sim.step({}, {}, kinematic), kFrameNonFiniteZeroed);
+  EXPECT_EQ(sim.state.bodies[1].orientation, before.orientation);
 }
 
 }  // namespace

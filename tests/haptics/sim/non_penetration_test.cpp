@@ -57,6 +57,9 @@ struct Case {
   /// Exact depth the meshes already have where the scene puts them (the ball's vertices
   /// poke through the socket's facets by design): only sinking beyond it counts.
   bool fromLoadedDepth = false;
+  /// Per moving object: a remote peer's (type-1), moved as a kinematic body to its
+  /// handle's pose (KinematicInput) instead of being coupled to it; empty: none.
+  std::vector<bool> remote = {};
 };
 
 struct Outcome {
@@ -102,14 +105,23 @@ Outcome run(const std::string& name, const Case& c) {
   std::string where;
   const double loadedM = c.fromLoadedDepth ? deepest(where) : 0.0;
   std::vector<HandleInput> handles(model.objects.size());
+  std::vector<KinematicInput> kinematic(model.objects.size());
   Outcome out;
   out.restFrame = -1;
   for (int frame = 0; frame < c.frames; ++frame) {
     const double t = (frame + 1) * model.dtS;
-    for (std::size_t i = 0; i < handles.size(); ++i) handles[i] = {c.handles[i](t), {}};
+    for (std::size_t i = 0; i < handles.size(); ++i) {
+      handles[i] = {c.handles[i](t), {}};
+      if (i < c.remote.size() && c.remote[i]) {
+        kinematic[i] = {true, restingState(model.objects[i].body, handles[i].poseWorld)};
+        kinematic[i].targetWorld.linearVelocityWorld =
+            (handles[i].poseWorld.position - c.handles[i](t - model.dtS).position) / model.dtS;
+        handles[i].held = false;
+      }
+    }
     {
       const test::FloatingPointTraps traps;
-      sim.step(handles);
+      sim.step(handles, {}, kinematic);
     }
     if (frame % kCheckEvery == 0 || frame + 1 == c.frames) {
       const double depthM = deepest(where);
@@ -336,6 +348,30 @@ TEST(NonPenetration, TwoMovingPartsPressedTogetherByTheirHandles) {
            {ramp(moved(0.02, 0.0, 0.0), 0.2), ramp(moved(-0.02, 0.0, 0.0), 0.2)},
            voxelM};
     expectWithinBound("two moving boxes pressed together", c);
+  }
+}
+
+/// The plate, a local 20 × 20 × 10 mm box 2.5 mm over it and a remote peer's 10 mm box
+/// 2.5 mm over that, 3 mm off its centre and turned 0.1 rad.
+Scene remoteBoxOverLocalBox() {
+  Scene scene = boxOverPlate(0.01);
+  scene.objects.push_back(test::meshObject("remote", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m, glm::rotate(at(0.003, 0.0, 0.02), 0.1, glm::dvec3(0.0, 0.0, 1.0)),
+              glm::dvec3(0.005, 0.005, 0.005));
+  }));
+  return scene;
+}
+
+TEST(NonPenetration, ARemotePartDrivenDownThroughALocalOneOnAPlate) {
+  for (const double voxelM : kVoxelsM) {
+    // the remote part's stream goes 20 mm down through the local box, whose user holds it
+    // where it is: the remote part presses it towards the plate and stops on it
+    Case c{remoteBoxOverLocalBox(),
+           {"box", "remote"},
+           {[](double) { return Pose{}; }, ramp(moved(0.0, 0.0, -0.02), 0.4)},
+           voxelM};
+    c.remote = {false, true};
+    expectWithinBound("a remote part driven down onto a local one", c);
   }
 }
 
