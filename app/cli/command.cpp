@@ -229,6 +229,7 @@ std::unique_ptr<CommandTree> voxhapCommands() {
   addDemoCommand(*tree);
   addControllerCommand(*tree);
   addViewCommand(*tree);
+  addPeerCommand(*tree);
   addRelayCommand(*tree);
   return tree;
 }

@@ -21,6 +21,8 @@ void addDemoCommand(CommandTree& tree);
 void addControllerCommand(CommandTree& tree);
 /// `voxhap view`: the front end's window.
 void addViewCommand(CommandTree& tree);
+/// `voxhap peer`: a controller joined to other peers over UDP, and its window.
+void addPeerCommand(CommandTree& tree);
 /// `voxhap relay`: a UDP forwarder that impairs the path, for trying peers on one machine.
 void addRelayCommand(CommandTree& tree);
 

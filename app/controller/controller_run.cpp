@@ -11,9 +11,11 @@
 #include <nlohmann/json.hpp>
 
 #include "app/controller/controller_service.h"
+#include "app/controller/peer_link.h"
 #include "app/scene_source.h"
 #include "haptics/core/error.h"
 #include "haptics/scene/object_selection.h"
+#include "net/peer/peer_session.h"
 
 namespace voxhap::cli {
 namespace {
@@ -56,17 +58,44 @@ void printSummary(std::ostream& out, const char* label, const PeriodSummary& s) 
       << us(s.maxNs) << " µs; " << s.overruns << " over " << (label[0] == 'p' ? "1.5 ms" : "1 ms") << "\n";
 }
 
+/// What peers compare at join: every object's name, role and meshes, and the moving names.
+Digest128 sceneHash(const Scene& scene, const std::vector<std::string>& moving) {
+  ContentHash hash;
+  const auto addText = [&hash](const std::string& text) {
+    hash.addArray(std::span(text.data(), text.size()));
+  };
+  hash.add(static_cast<std::uint64_t>(scene.objects.size()));
+  for (const SceneObject& object : scene.objects) {
+    addText(object.name);
+    hash.add(static_cast<std::uint32_t>(object.settings.role));
+    hash.add(static_cast<std::uint64_t>(object.parts.size()));
+    for (const Part& part : object.parts) {
+      hash.addArray(std::span<const glm::vec3>(part.mesh.positionsWorld));
+      hash.addArray(std::span<const glm::uvec3>(part.mesh.triangles));
+    }
+  }
+  for (const std::string& name : moving) addText(name);
+  return hash.digest();
+}
+
 /// Loads the scene `source` names and builds it with `model` (the sizes and offset already
 /// taken from `source`), all but its haptic loop.
 std::unique_ptr<controller::ControllerSession> loadSession(const net::pb::LoadScene& source,
                                                            const SceneModelOptions& model, Console& console,
                                                            const ProgressFn& progress) {
-  const std::vector<std::string> moving(source.move().begin(), source.move().end());
-  if (moving.empty()) throw Error("nothing to move in " + source.scene() + ": name an object or group");
   auto session = std::make_unique<controller::ControllerSession>();
-  session->source = source;
   const Scene scene = loadScene(source.scene(), kDefaultSeed, console);
+  // none named: the scene's dynamic objects (a peer's default)
+  const std::vector<std::string> moving =
+      source.move().empty() ? dynamicObjectNames(scene)
+                            : std::vector<std::string>(source.move().begin(), source.move().end());
+  if (moving.empty()) throw Error("nothing to move in " + source.scene() + ": name an object or group");
+  session->source = source;
+  if (source.move().empty()) {
+    for (const std::string& name : moving) session->source.add_move(name);
+  }
   session->sceneName = scene.sourceName;
+  session->sceneHash = sceneHash(scene, moving);
   session->voxelSizeM = model.staticVoxelSizeM;
   session->pointSpacingM = model.pointSpacingM;
   session->pointOffsetM = model.pointDisplacementM;
@@ -84,6 +113,97 @@ std::unique_ptr<controller::ControllerSession> loadSession(const net::pb::LoadSc
                                                                         if (progress) progress(0.9 + 0.1 * f);
                                                                       });
   return session;
+}
+
+/// The session key: from the file, or (for the first member only) a new one, printed.
+net::SessionKey sessionKey(const PeerRunOptions& peer, Console& console) {
+  if (!peer.keyFile.empty()) return net::SessionKey::fromFile(peer.keyFile);
+  if (!peer.joinHost.empty())
+    throw Error("--join needs --key FILE: the session key its first member printed");
+  const net::SessionKey key = net::SessionKey::generate();
+  console.info("session key " + key.toHex() + " (the others join with it in a file: --key FILE)");
+  return key;
+}
+
+/// Binds the peer's socket and, when asked, joins through a member: the loop of `session`
+/// then starts from the member's snapshot.
+std::unique_ptr<net::PeerSession> startPeer(const PeerRunOptions& peer,
+                                            controller::ControllerSession& session, asio::io_context& io,
+                                            Console& console) {
+  const SimModel& model = session.built->model;
+  net::PeerSessionOptions o;
+  o.listenHost = peer.listenHost;
+  o.listenPort = peer.listenPort;
+  o.advertise = peer.advertise;
+  o.name = peer.name;
+  o.timeout = std::chrono::milliseconds(std::llround(peer.timeoutS * 1e3));
+  o.parameters.set_scene_hash(&session.sceneHash, sizeof session.sceneHash);
+  o.parameters.set_voxel_size_m(session.voxelSizeM);
+  o.parameters.set_point_spacing_m(session.pointSpacingM);
+  o.parameters.set_point_offset_m(session.pointOffsetM);
+  o.parameters.set_force_layer(makeSimState(model).forceLayer);
+  o.parameters.set_moving_objects(static_cast<std::uint32_t>(model.objects.size()));
+  auto peerSession =
+      std::make_unique<net::PeerSession>(io, sessionKey(peer, console), std::move(o),
+                                         [&console](const std::string& line) { console.info(line); });
+  console.info("peer " + std::to_string(peerSession->self()) + " listening for peers on " + peer.listenHost +
+               ":" + std::to_string(peerSession->port()) + " (UDP)");
+  if (!peer.joinHost.empty()) {
+    const auto started = std::chrono::steady_clock::now();
+    const std::vector<std::byte> snapshot = peerSession->join(
+        peer.joinHost, peer.joinPort, std::chrono::milliseconds(std::llround(peer.joinPatienceS * 1e3)));
+    session.start = restoreState(model, snapshot);
+    console.info("joined through " + peer.joinHost + ":" + std::to_string(peer.joinPort) + " in " +
+                 std::to_string(std::llround(secondsSince(started) * 1e3)) + " ms (" +
+                 std::to_string(snapshot.size()) + " bytes of state)");
+  }
+  return peerSession;
+}
+
+/// Why a client of a peer may not grab `object`: it is another's, or nobody's yet (either
+/// way this peer asks for it).
+std::string whyNotGrab(net::PeerSession& peer, const SimModel& model, std::size_t object) {
+  const PeerId owner = peer.owners()[object];
+  if (owner == peer.self()) return {};
+  peer.want(static_cast<std::uint32_t>(object));
+  const std::string name = "'" + model.objects[object].name + "'";
+  if (owner == kNoPeer) return name + " was nobody's: this peer takes it now; grab it again in a moment";
+  return name + " is peer " + std::to_string(owner) +
+         "'s: asked for it; it comes here once nobody holds it there; grab it again then";
+}
+
+nlohmann::ordered_json peerJson(const net::PeerSession& peer, const controller::PeerLinkCounts& link) {
+  const net::PeerSessionCounts& c = peer.counts();
+  nlohmann::ordered_json members = nlohmann::ordered_json::array();
+  for (const net::MemberView& m : peer.members()) {
+    members.push_back({{"peer", m.peer},
+                       {"endpoint", m.endpoint},
+                       {"name", m.name},
+                       {"rtt_ms", m.rttMs < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(m.rttMs)},
+                       {"bytes_in", m.bytesIn},
+                       {"bytes_out", m.bytesOut}});
+  }
+  nlohmann::ordered_json opened;
+  static constexpr const char* kResults[] = {"opened",   "bad_size", "not_ours", "no_window",
+                                             "replayed", "too_old",  "forged",   "payload_too_big"};
+  for (std::size_t i = 0; i < c.opened.size(); ++i) opened[kResults[i]] = c.opened[i];
+  return {{"self", peer.self()},
+          {"members", members},
+          {"owners", peer.owners()},
+          {"warnings", peer.warnings()},
+          {"datagrams_in", c.datagramsIn},
+          {"bytes_in", c.bytesIn},
+          {"datagrams_out", c.datagramsOut},
+          {"bytes_out", c.bytesOut},
+          {"flooded", c.flooded},
+          {"malformed", c.malformed},
+          {"unexpected", c.unexpected},
+          {"send_failures", c.sendFailures},
+          {"open_results", opened},
+          {"remote_states", link.remoteStates},
+          {"remote_states_dropped", link.remoteStatesDropped},
+          {"owner_changes", link.ownerChanges},
+          {"ticks", link.ticks}};
 }
 
 }  // namespace
@@ -120,6 +240,13 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   }
 
   asio::io_context io;
+  std::unique_ptr<net::PeerSession> peer;
+  if (options.peer) {
+    if (!initial) throw Error("a peer needs a SCENE: every peer of a session loads the same");
+    peer = startPeer(*options.peer, *initial, io, console);
+    loopOptions.localPeer = peer->self();
+  }
+  std::unique_ptr<controller::PeerLink> link;
   asio::signal_set signals(io, SIGINT, SIGTERM);
   asio::steady_timer housekeeping(io);
   asio::steady_timer lastWrites(io);
@@ -141,6 +268,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
     stopping = true;
     stopReason = reason;
     asio::post(io, [&] {
+      if (link) link->stop();
       if (server) server->close();
       signals.cancel();
       housekeeping.cancel();
@@ -149,7 +277,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   };
   const auto log = [&console](const std::string& line) { console.info(line); };
   ControllerService service(
-      io, std::move(initial), loader, loopOptions, options.device,
+      io, std::move(initial), loader, loopOptions, peer ? std::string() : options.device,
       [&] { stop("a client asked it to shut down"); }, log);
   net::FrontendServerOptions serverOptions;
   serverOptions.token = options.token;
@@ -166,6 +294,14 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
 
   if (const controller::ControllerSession* session = service.session())
     console.info(realtimeLine(session->loop->realtime()));
+  if (peer) {
+    const SimModel& model = service.session()->built->model;
+    service.setPeerGuard({[&peer, &model](std::size_t object) { return whyNotGrab(*peer, model, object); },
+                          "in a peer session the scene, its sizes and the force layer are every peer's"});
+    link = std::make_unique<controller::PeerLink>(
+        io, *peer, service,
+        controller::PeerLinkOptions{options.peer->streamHz, options.peer->take, options.device}, log);
+  }
   const asio::ip::tcp::endpoint listening = server->endpoint();
   console.info("listening on " + listening.address().to_string() + ":" + std::to_string(listening.port()));
   if (options.onListening) options.onListening(listening.port());
@@ -220,6 +356,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
                                 {"updates_sent", c.updatesSent},
                                 {"updates_skipped", c.updatesSkipped},
                                 {"updates_unchanged", c.updatesUnchanged}};
+    if (peer) j["peer"] = peerJson(*peer, link->counts());
     out << j.dump(2) << "\n";
     return;
   }

@@ -16,6 +16,21 @@
 
 namespace voxhap::cli {
 
+/// A controller that is one peer of a collaborative session (`voxhap peer`, DESIGN §8).
+struct PeerRunOptions {
+  std::string listenHost = "127.0.0.1";  ///< UDP, for the other peers
+  std::uint16_t listenPort = 0;          ///< 0: any free port (printed)
+  std::string advertise;                 ///< "HOST:PORT" the others send to; empty: the listening one
+  std::string joinHost;                  ///< a member to join through; empty: the first member
+  std::uint16_t joinPort = 0;
+  std::string keyFile;  ///< the session key; empty: the first member makes one and prints it
+  std::string take;     ///< an object to ask for at once; --device holds it once it is ours
+  std::string name;     ///< the user, for the others
+  double streamHz = 200.0;
+  double timeoutS = 2.0;
+  double joinPatienceS = 10.0;
+};
+
 struct ControllerOptions {
   std::string scene;
   std::vector<std::string> moving;  ///< objects or groups the controller moves
@@ -29,6 +44,8 @@ struct ControllerOptions {
   bool json = false;
   /// Called on the controller's thread once it listens, with the port (in-process use).
   std::function<void(std::uint16_t port)> onListening;
+  /// Set: this controller is a peer of a session (its --device then holds peer->take).
+  std::optional<PeerRunOptions> peer;
   /// When set, the controller stops within its housekeeping period once this holds true.
   const std::atomic<bool>* stopRequested = nullptr;
 };

@@ -67,7 +67,8 @@ ControllerService::ControllerService(asio::io_context& io, std::unique_ptr<Contr
       shutdown_(std::move(shutdown)),
       log_(std::move(log)),
       loopOptions_(loopOptions) {
-  replaceSession(std::move(session), {}, startDevice);
+  std::optional<SimState> start = session ? std::move(session->start) : std::nullopt;
+  replaceSession(std::move(session), std::move(start), startDevice);
 }
 
 ControllerService::~ControllerService() {
@@ -234,6 +235,12 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
   const int object = movingObject(request.object(), reply);
   if (object < 0) return;
   const auto i = static_cast<std::size_t>(object);
+  if (peerGuard_) {
+    if (const std::string why = peerGuard_->whyNotGrab(i); !why.empty()) {
+      fail(reply, why, "object");
+      return;
+    }
+  }
   const std::string& device = request.device();
   std::unique_ptr<HapticDevice> created;  // null for a SpaceMouse, which stays open between grabs
   HapticDevice* holder = nullptr;
@@ -352,6 +359,10 @@ void ControllerService::setParameters(std::uint64_t client, std::uint64_t id,
   if (rebuilds && !sizesInRange(rebuild, reply)) return;
   if (rebuilds && loading_) {
     fail(reply, "a scene is loading already; wait for its reply");
+    return;
+  }
+  if (peerGuard_ && (rebuilds || request.has_force_layer())) {
+    fail(reply, peerGuard_->whyNotReload, rebuilds ? kind.errorField : "force_layer");
     return;
   }
 
@@ -504,6 +515,7 @@ void ControllerService::frameUpdate(pb::FrameUpdate& update) {
     toProto(o.forceWorld, *out.mutable_force_n());
     out.set_contacts(o.contacts);
     out.set_travel_share(o.travelShare);
+    out.set_owner_peer(o.owner);
   }
 }
 
@@ -540,6 +552,10 @@ void ControllerService::load(std::uint64_t client, std::uint64_t id, const pb::L
                              const LoadKind& kind, pb::ServerMessage& reply) {
   if (loading_) {
     fail(reply, "a scene is loading already; wait for its reply");
+    return;
+  }
+  if (peerGuard_) {
+    fail(reply, peerGuard_->whyNotReload, kind.errorField);
     return;
   }
   if (request.scene().empty()) {

@@ -20,6 +20,7 @@
 
 #include "app/controller/haptic_loop.h"
 #include "app/controller/session_proximity.h"
+#include "haptics/core/content_hash.h"
 #include "haptics/core/progress.h"
 #include "haptics/device/spacemouse_device.h"
 #include "haptics/runtime/latest_value.h"
@@ -60,6 +61,16 @@ struct ControllerSession {
   std::unique_ptr<BuiltScene> built;       ///< the model the loop reads (a stable address)
   std::unique_ptr<HapticLoop> loop;        ///< started by the ControllerService
   std::unique_ptr<SessionProximity> proximity;
+  Digest128 sceneHash;            ///< the scene's content and moving names (peers compare it)
+  std::optional<SimState> start;  ///< where the loop starts (a peer's snapshot); none: as loaded
+};
+
+/// What a collaborative session (DESIGN §8) allows of a controller's clients: a grab only
+/// of what this peer owns, and no other scene or sizes than every peer's.
+struct PeerGuard {
+  /// Why `object` may not be grabbed here (empty: it may).
+  std::function<std::string(std::size_t object)> whyNotGrab;
+  std::string whyNotReload;  ///< why load_scene and size changes are refused
 };
 
 /// Builds a session (all but its loop) for a LoadScene request, calling `progress` as it
@@ -87,6 +98,8 @@ public:
 
   /// How deferred replies and progress events reach a client (FrontendServer::send).
   void setSender(SendFn send) { send_ = std::move(send); }
+  /// Makes this controller a peer's: grabs and reloads are checked by `guard`.
+  void setPeerGuard(PeerGuard guard) { peerGuard_ = std::move(guard); }
 
   void hello(net::pb::HelloReply& reply) override;
   void handle(std::uint64_t client, const net::pb::ClientMessage& request,
@@ -165,6 +178,7 @@ private:
   StandingSpaceMouse* spaceMouse(const std::string& device, const Pose& startWorld,
                                  net::pb::ServerMessage& reply);
   HapticLoopOptions loopOptions_;
+  std::optional<PeerGuard> peerGuard_;
   double couplingStiffnessShare_ = 1.0;  ///< of every coupling's stiffest (scaledCouplingGains)
   double couplingDampingRatio_ = kCouplingDampingRatio;
   std::uint32_t forceLayer_ = 0;  ///< as last set (the haptic thread takes it at its next frame)

@@ -32,7 +32,10 @@ HapticLoop::HapticLoop(const SimModel& model, SimState initial, std::shared_ptr<
       devices_(model.objects.size(), nullptr),
       handles_(model.objects.size()),
       gains_(model.objects.size()),
+      jitter_(model.objects.size(), JitterBuffer(options.playoutDelayUs)),
+      kinematic_(model.objects.size()),
       commands_(options.commandCapacity),
+      remote_(options.remoteCapacity),
       retired_(std::bit_ceil(options.commandCapacity + model.objects.size())),
       snapshots_(initialSnapshot(model, state_)),
       period_(options.periodNs * 3 / 2),
@@ -66,6 +69,10 @@ bool HapticLoop::post(const LoopCommand& command) noexcept {
   return commands_.tryPush(command);
 }
 
+bool HapticLoop::postRemote(const RemoteUpdate& update) noexcept {
+  return remote_.tryPush(update);
+}
+
 HapticDevice* HapticLoop::takeRetired() noexcept {
   HapticDevice* device = nullptr;
   return retired_.tryPop(device) ? device : nullptr;
@@ -94,6 +101,14 @@ void HapticLoop::apply(const LoopCommand& command) noexcept {
     gains_[command.object] = command.gains;
     return;
   }
+  if (command.kind == LoopCommand::Kind::SetOwner) {
+    state_.owners[command.object] = command.value;
+    jitter_[command.object].clear();
+    // a part taken over starts at rest where it was shown, not with the remote velocity
+    RigidBodyState& body = state_.bodies[command.object];
+    body.linearVelocityWorld = body.angularVelocityWorld = glm::dvec3(0.0);
+    return;
+  }
   retire(command.object);
   if (command.kind == LoopCommand::Kind::Grab && command.device != nullptr) {
     grabbed_[command.object].device = command.device;
@@ -103,14 +118,40 @@ void HapticLoop::apply(const LoopCommand& command) noexcept {
   }
 }
 
+void HapticLoop::take(const RemoteUpdate& update) noexcept {
+  if (update.object >= jitter_.size() || state_.owners[update.object] != update.owner ||
+      update.owner == options_.localPeer) {
+    return;  // a stream of an owner it no longer has
+  }
+  jitter_[update.object].push(update.sample, update.arrivalUs);
+}
+
+void HapticLoop::moveRemoteObjects(std::int64_t endUs) noexcept {
+  if (options_.localPeer == kNoPeer) return;
+  for (std::size_t i = 0; i < kinematic_.size(); ++i) {
+    const PeerId owner = state_.owners[i];
+    KinematicInput& k = kinematic_[i];
+    k.active = owner != options_.localPeer;
+    if (!k.active) continue;
+    if (owner == kNoPeer || !jitter_[i].playOut(endUs, k.targetWorld)) {
+      // nobody moves it, or its owner's stream has not begun: it stays where it is
+      k.targetWorld = state_.bodies[i];
+      k.targetWorld.linearVelocityWorld = k.targetWorld.angularVelocityWorld = glm::dvec3(0.0);
+    }
+  }
+}
+
 void HapticLoop::publish(FrameStatus status, std::uint64_t frame) noexcept {
   FrameSnapshot& s = snapshots_.writeBuffer();
   s.frame = frame;
   s.timeS = state_.timeS;
+  s.endedUs = monotonicTime().nowNs() / 1000;
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     ObjectSnapshot& o = s.objects[i];
     const ObjectFrame& f = outputs_.objects[i];
     o.pose = objectPose(model_, state_, i);
+    o.body = state_.bodies[i];
+    o.owner = state_.owners[i];
     o.held = devices_[i] != nullptr;
     o.handle = o.held ? handles_[i].poseWorld : o.pose;
     o.forceWorld = f.contactForceWorld;
@@ -145,10 +186,14 @@ void HapticLoop::run() noexcept {
       skippedPeriods_ += tick.skippedPeriods;
     }
     while (commands_.tryPop(command)) apply(command);
+    RemoteUpdate update;
+    while (remote_.tryPop(update)) take(update);
+    moveRemoteObjects(tick.beganNs / 1000 + options_.periodNs / 1000);
     FrameInputs inputs;
     inputs.now = std::chrono::steady_clock::now();
     inputs.previousStepS = lastStepS;
     inputs.couplingGains = gains_;
+    inputs.kinematic = kinematic_;
     const FrameStatus status =
         stepWithDevices(model_, state_, workspace_, devices_, handles_, inputs, outputs_);
     lastStepS = std::chrono::duration<double>(std::chrono::steady_clock::now() - inputs.now).count();

@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "haptics/runtime/jitter_buffer.h"
 #include "haptics/runtime/period_stats.h"
 #include "haptics/runtime/realtime.h"
 #include "haptics/runtime/spsc_queue.h"
@@ -26,10 +27,11 @@ namespace voxhap::controller {
 /// A command for the haptic thread, taken at the start of the next frame.
 struct LoopCommand {
   enum class Kind : std::uint8_t {
-    Grab,             ///< `device` holds `object` from now on (its time starts at 0 now)
-    Release,          ///< `object` goes free; its device is retired
-    SetForceLayer,    ///< the force layer becomes `value`
-    SetCouplingGains  ///< `object`'s coupling takes `gains`
+    Grab,              ///< `device` holds `object` from now on (its time starts at 0 now)
+    Release,           ///< `object` goes free; its device is retired
+    SetForceLayer,     ///< the force layer becomes `value`
+    SetCouplingGains,  ///< `object`'s coupling takes `gains`
+    SetOwner           ///< peer `value` owns `object` from now on (kNoPeer: nobody)
   };
   Kind kind = Kind::Release;
   std::uint32_t object = 0;
@@ -38,9 +40,19 @@ struct LoopCommand {
   CouplingGains gains;
 };
 
+/// A remote owner's state of one object (type-1, DESIGN §8), from the comms thread.
+struct RemoteUpdate {
+  std::uint32_t object = 0;
+  PeerId owner = kNoPeer;      ///< taken only while this peer owns the object
+  RemoteSample sample;         ///< sent on the owner's clock
+  std::int64_t arrivalUs = 0;  ///< monotonicTime() on this peer, µs
+};
+
 /// One moving object in a snapshot.
 struct ObjectSnapshot {
-  Pose pose;    ///< local → world
+  Pose pose;            ///< local → world
+  RigidBodyState body;  ///< centre of mass, orientation and velocities, world
+  PeerId owner = kNoPeer;
   Pose handle;  ///< its handle's pose, when held
   bool held = false;
   glm::dvec3 forceWorld{0.0};  ///< contact force, N
@@ -52,6 +64,7 @@ struct ObjectSnapshot {
 struct FrameSnapshot {
   std::uint64_t frame = 0;
   double timeS = 0.0;                   ///< simulated
+  std::int64_t endedUs = 0;             ///< monotonicTime() when the frame ended, µs
   std::vector<ObjectSnapshot> objects;  ///< one per moving object
   std::uint32_t forceLayer = 0;
   FrameStatus status = kFrameOk;
@@ -68,6 +81,13 @@ struct HapticLoopOptions {
   bool realtime = true;  ///< try mlockall and SCHED_FIFO
   int fifoPriority = 80;
   std::size_t commandCapacity = 256;  ///< a power of two
+  /// This peer in a collaborative session (DESIGN §8); kNoPeer: alone, every object
+  /// integrated here. In a session only the objects this peer owns are integrated; those
+  /// a remote peer owns follow its stream (RemoteUpdate) through a jitter buffer, and
+  /// those nobody owns stay where they are, so that every peer sees the same.
+  PeerId localPeer = kNoPeer;
+  std::size_t remoteCapacity = 1024;  ///< RemoteUpdates queued, a power of two
+  std::int64_t playoutDelayUs = 30'000;
 };
 
 class HapticLoop {
@@ -90,6 +110,8 @@ public:
 
   /// Comms thread: queues `command`; false when the queue is full (nothing is queued).
   bool post(const LoopCommand& command) noexcept;
+  /// Comms thread: queues a remote owner's state; false when the queue is full.
+  bool postRemote(const RemoteUpdate& update) noexcept;
   /// Comms thread: a device the haptic thread let go, now the caller's to delete; nullptr
   /// when there is none.
   HapticDevice* takeRetired() noexcept;
@@ -118,6 +140,9 @@ private:
 
   void run() noexcept;
   void apply(const LoopCommand& command) noexcept;
+  void take(const RemoteUpdate& update) noexcept;
+  /// Fills kinematic_ for the frame ending at local time `endUs`.
+  void moveRemoteObjects(std::int64_t endUs) noexcept;
   void retire(std::size_t object) noexcept;
   void publish(FrameStatus status, std::uint64_t frame) noexcept;
 
@@ -130,7 +155,10 @@ private:
   std::vector<HapticDevice*> devices_;  ///< &grabbed_[i] while held, else nullptr
   std::vector<HandleInput> handles_;
   std::vector<CouplingGains> gains_;  ///< per object, its coupling's (the model's until set)
+  std::vector<JitterBuffer> jitter_;  ///< per object, its remote owner's stream
+  std::vector<KinematicInput> kinematic_;
   SpscQueue<LoopCommand> commands_;
+  SpscQueue<RemoteUpdate> remote_;
   SpscQueue<HapticDevice*> retired_;
   TripleBuffer<FrameSnapshot> snapshots_;
   PeriodStats period_;

@@ -18,6 +18,7 @@
 #include "app/view/handle_drag.h"
 #include "app/view/scene_picker.h"
 #include "haptics/core/error.h"
+#include "haptics/scene/object_selection.h"
 #include "net/frontend/pose_proto.h"
 #include "render/gl_context.h"
 #include "render/hud.h"
@@ -80,15 +81,6 @@ void installInput(GLFWwindow* window, WindowInput& input) {
   });
 }
 
-/// The scene's objects that move when the user names none: its dynamic ones.
-std::vector<std::string> dynamicObjects(const Scene& scene) {
-  std::vector<std::string> names;
-  for (const SceneObject& o : scene.objects) {
-    if (o.settings.role == ObjectRole::Dynamic) names.push_back(o.name);
-  }
-  return names;
-}
-
 /// The link's state once `done` holds, or an Error with `what` after `limit`.
 template <class Done>
 view::LinkState waitForLink(const view::ControllerLink& link, Done done, std::chrono::seconds limit,
@@ -146,7 +138,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       if (o.moving()) moving.push_back(o.name());
     }
   } else {
-    if (moving.empty()) moving = dynamicObjects(scene);
+    if (moving.empty()) moving = dynamicObjectNames(scene);
     if (moving.empty())
       throw Error(scene.sourceName + " has no dynamic object: name what moves with --move NAME");
     link.loadScene(sceneName, moving);

@@ -94,4 +94,12 @@ ObjectSelection selectObjects(const Scene& scene, std::span<const std::string> n
   return selection;
 }
 
+std::vector<std::string> dynamicObjectNames(const Scene& scene) {
+  std::vector<std::string> names;
+  for (const SceneObject& o : scene.objects) {
+    if (o.settings.role == ObjectRole::Dynamic) names.push_back(o.name);
+  }
+  return names;
+}
+
 }  // namespace voxhap

@@ -42,4 +42,7 @@ std::string groupMoveProblem(const Scene& scene, const SceneGroup& group);
 /// What can be moved, for messages: "objects: a, b; groups: g (a, c)".
 std::string movableNames(const Scene& scene);
 
+/// The objects that move when the user names none: the scene's dynamic ones, in order.
+std::vector<std::string> dynamicObjectNames(const Scene& scene);
+
 }  // namespace voxhap

@@ -13,8 +13,8 @@
 namespace voxhap::test {
 
 ChildProcess::ChildProcess(const std::string& program, const std::vector<std::string>& args,
-                           const std::filesystem::path& dir)
-    : outFile_(dir / "child-out.txt"), errFile_(dir / "child-err.txt") {
+                           const std::filesystem::path& dir, const std::string& name)
+    : outFile_(dir / (name + "-out.txt")), errFile_(dir / (name + "-err.txt")) {
   std::vector<std::string> argv = {program};
   argv.insert(argv.end(), args.begin(), args.end());
   std::vector<char*> cargs;

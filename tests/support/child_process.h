@@ -16,9 +16,10 @@ namespace voxhap::test {
 
 class ChildProcess {
 public:
-  /// Starts `program` with `args` in `dir`, stdin empty, stdout and stderr to files there.
+  /// Starts `program` with `args` in `dir`, stdin empty, stdout and stderr to files there
+  /// named after `name` (several children in one directory need different names).
   ChildProcess(const std::string& program, const std::vector<std::string>& args,
-               const std::filesystem::path& dir);
+               const std::filesystem::path& dir, const std::string& name = "child");
   /// Kills it (SIGKILL) when still running.
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
