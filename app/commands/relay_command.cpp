@@ -105,9 +105,10 @@ void addRelayCommand(CommandTree& tree) {
       "voxhap relay --to HOST:PORT [--listen HOST:PORT] [--delay TIME] [--jitter TIME] [--loss SHARE]\n"
       "       [--duplicate SHARE] [--seed N] [--duration TIME] [--json]";
   help.description =
-      "Forwards the UDP datagrams it receives at --listen to --to, and what --to sends back to\n"
-      "the relay on to whoever sent to it last: put one between two peers on one machine to\n"
-      "give their path a delay (each datagram held for a time drawn from [delay − jitter,\n"
+      "Forwards the UDP datagrams it receives at --listen to --to, from a socket of its own for\n"
+      "each sender (as a NAT would), and what --to sends back to that socket on to that sender:\n"
+      "put one in front of a peer on one machine (the others send to it) to give its path a delay (each "
+      "datagram held for a time drawn from [delay − jitter,\n"
       "delay + jitter], so that jitter reorders them), loss and duplicates, as `tc netem` would.\n"
       "The same seed gives the same fates to the same datagrams in the same order, in both\n"
       "directions (the reply path takes seed + 1). It listens on 127.0.0.1 at any free port by\n"

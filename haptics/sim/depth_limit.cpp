@@ -47,8 +47,8 @@ void addRow(Limit& l, const DepthRow& row, double weight, std::span<const RigidB
   l.weightSum += weight;
 }
 
-/// Normalises the sums of `l` into its limit and fills in what the solver needs.
-void finish(Limit& l, std::span<const Delta> deltas) {
+/// Normalises the sums of `l` into its limit.
+void normalise(Limit& l) {
   const double perWeight = 1.0 / l.weightSum;
   l.linearA *= perWeight;
   l.angularA *= perWeight;
@@ -56,6 +56,11 @@ void finish(Limit& l, std::span<const Delta> deltas) {
   l.angularB *= perWeight;
   l.meanDepthM *= perWeight;
   l.targetM = std::max(l.limitM - l.meanDepthM, 0.0);
+}
+
+/// Fills in what the solver needs of the bodies' masses, and starts it afresh.
+void setMasses(Limit& l, std::span<const Delta> deltas) {
+  l.lambda = 0.0;
   const Delta& a = deltas[static_cast<std::size_t>(l.bodyA)];
   l.turnPerImpulseA = a.inverseInertiaWorld * l.angularA;
   l.inverseMass = a.inverseMass * glm::dot(l.linearA, l.linearA) + glm::dot(l.angularA, l.turnPerImpulseA);
@@ -84,6 +89,7 @@ std::size_t groupRows(DepthLimitScratch& s, std::size_t rowCount, std::span<cons
     }
     addRow(s.limits[count - 1], row, weight, before);
   }
+  for (std::size_t k = 0; k < count; ++k) normalise(s.limits[k]);
   return count;
 }
 
@@ -108,36 +114,34 @@ void sweep(DepthLimitScratch& s, std::size_t count) {
 
 }  // namespace
 
-DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
-                            std::span<const RigidBodyState> before, std::span<RigidBodyState> after,
-                            DepthLimitScratch& s, std::size_t rowCount, double dtS) noexcept {
-  DepthLimitFrame frame;
-  frame.rows = static_cast<std::uint32_t>(rowCount);
-  for (Delta& d : s.deltas) d.refusedLinear = d.refusedAngular = glm::dvec3(0.0);
-  if (rowCount == 0) return frame;
+namespace {
+
+/// Sets each body's displacement from `before` to `after` and its inverse mass (zero for a
+/// kinematic body unless `kinematicYields`), and readies the limits; how many bind.
+std::uint32_t setUp(std::span<const MovingObjectModel> objects, std::span<const RigidBodyState> before,
+                    std::span<const RigidBodyState> after, DepthLimitScratch& s, std::size_t count,
+                    bool kinematicYields) {
   for (std::size_t i = 0; i < objects.size(); ++i) {
     Delta& d = s.deltas[i];
     d.linear = after[i].comWorld - before[i].comWorld;
     d.angular = rotationVector(after[i].orientation * glm::conjugate(before[i].orientation));
-    d.inverseMass = objects[i].body.inverseMassPerKg;
-    d.inverseInertiaWorld = inverseInertiaWorld(objects[i].body, before[i].orientation);
+    const bool fixed = d.kinematic && !d.yielding && !kinematicYields;
+    d.inverseMass = fixed ? 0.0 : objects[i].body.inverseMassPerKg;
+    d.inverseInertiaWorld =
+        fixed ? glm::dmat3(0.0) : inverseInertiaWorld(objects[i].body, before[i].orientation);
   }
-  const std::size_t count = groupRows(s, rowCount, before);
-  frame.pairs = static_cast<std::uint32_t>(count);
+  std::uint32_t binding = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    finish(s.limits[k], s.deltas);
+    setMasses(s.limits[k], s.deltas);
     const Limit& l = s.limits[k];
-    if (gainOf(l, s.deltas) > l.targetM + kToleranceOfLimit * l.limitM) ++frame.binding;
+    if (gainOf(l, s.deltas) > l.targetM + kToleranceOfLimit * l.limitM) ++binding;
   }
-  if (frame.binding == 0) return frame;
-  // what the integrator asked for; what is kept is taken off at the end
-  for (Delta& d : s.deltas) {
-    d.refusedLinear = d.linear;
-    d.refusedAngular = d.angular;
-  }
-  for (int iteration = 0; iteration < kIterations; ++iteration) sweep(s, count);
+  return binding;
+}
 
-  // what the sweeps left: the whole step scaled down until every limit holds
+/// The sweeps, then the scale of the whole step that the last pass needs.
+double solve(DepthLimitScratch& s, std::size_t count) {
+  for (int iteration = 0; iteration < kIterations; ++iteration) sweep(s, count);
   double scale = 1.0;
   for (std::size_t k = 0; k < count; ++k) {
     const Limit& l = s.limits[k];
@@ -145,14 +149,50 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
     const double gain = gainOf(l, s.deltas);
     if (gain > allowed) scale = std::min(scale, allowed / gain);
   }
+  return scale;
+}
+
+}  // namespace
+
+DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
+                            std::span<const RigidBodyState> before, std::span<RigidBodyState> after,
+                            DepthLimitScratch& s, std::size_t rowCount, double dtS) noexcept {
+  DepthLimitFrame frame;
+  frame.rows = static_cast<std::uint32_t>(rowCount);
+  for (Delta& d : s.deltas) d.refusedLinear = d.refusedAngular = glm::dvec3(0.0);
+  const std::size_t count = rowCount == 0 ? 0 : groupRows(s, rowCount, before);
+  // a remote body yields only while it touches what it was trapped against
+  for (std::size_t i = 0; i < s.deltas.size(); ++i) {
+    Delta& d = s.deltas[i];
+    const auto body = static_cast<int>(i);
+    d.yielding = d.kinematic && d.yielding &&
+                 std::any_of(s.limits.begin(), s.limits.begin() + static_cast<std::ptrdiff_t>(count),
+                             [body](const Limit& l) { return l.bodyA == body || l.bodyB == body; });
+  }
+  if (rowCount == 0) return frame;
+  frame.pairs = static_cast<std::uint32_t>(count);
+  frame.binding = setUp(objects, before, after, s, count, false);
+  if (frame.binding == 0) return frame;
+  double scale = solve(s, count);
+  if (scale < 1.0 &&
+      std::any_of(s.deltas.begin(), s.deltas.end(), [](const Delta& d) { return d.kinematic; })) {
+    // a local part trapped against a remote one: the remote one yields too
+    for (Delta& d : s.deltas) d.yielding = d.kinematic;
+    setUp(objects, before, after, s, count, true);
+    scale = solve(s, count);
+  }
   frame.scale = scale;
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
     Delta& d = s.deltas[i];
+    // of what the integrator asked for, what is not kept
+    const glm::dvec3 askedLinear = after[i].comWorld - before[i].comWorld;
+    const glm::dvec3 askedAngular =
+        rotationVector(after[i].orientation * glm::conjugate(before[i].orientation));
     d.linear *= scale;
     d.angular *= scale;
-    d.refusedLinear -= d.linear;
-    d.refusedAngular -= d.angular;
+    d.refusedLinear = askedLinear - d.linear;
+    d.refusedAngular = askedAngular - d.angular;
     after[i].comWorld = before[i].comWorld + d.linear;
     after[i].orientation = glm::normalize(quatFromRotationVector(d.angular) * before[i].orientation);
     after[i].linearVelocityWorld -= d.refusedLinear / dtS;

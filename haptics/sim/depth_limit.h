@@ -99,6 +99,12 @@ struct DepthLimitScratch {
     glm::dvec3 refusedAngular{0.0};
     glm::dmat3 inverseInertiaWorld{0.0};
     double inverseMass = 0.0;
+    /// Set by the caller each frame: a body a remote peer moves (KinematicInput). No limit
+    /// moves it, so that every peer shows it where its owner has it, unless the limits
+    /// cannot hold otherwise (a local part trapped between it and a third): then it yields
+    /// with its own mass like any body, and goes on yielding until it has no contact left.
+    bool kinematic = false;
+    bool yielding = false;  ///< kept from frame to frame (see kinematic)
   };
 
   /// Room for `rowCapacity` rows in `pairs` pairs among `bodies` moving objects.

@@ -307,6 +307,7 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     }
     ws.beforeStep[i] = body;
     const bool kinematic = i < inputs.kinematic.size() && inputs.kinematic[i].active;
+    ws.depthScratch.deltas[i].kinematic = kinematic;
     if (kinematic) {
       moveKinematic(inputs.kinematic[i].targetWorld, body, status);
     } else {

@@ -125,6 +125,8 @@ PeerSession::PeerSession(asio::io_context& io, const SessionKey& key, PeerSessio
     throw Error("cannot listen for peers on " + options_.listenHost + ":" +
                 std::to_string(options_.listenPort) + ": " + ec.message());
   }
+  advertised_ = options_.advertise.empty() ? text(socket_.local_endpoint()) : options_.advertise;
+  if (!parseEndpoint(advertised_)) throw Error("--advertise: '" + advertised_ + "' is not HOST:PORT");
   receive();
 }
 

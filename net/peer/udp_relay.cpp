@@ -22,14 +22,14 @@ ImpairmentSettings replySettings(ImpairmentSettings s) {
 }  // namespace
 
 UdpRelay::UdpRelay(asio::io_context& io, const UdpRelayOptions& options)
-    : front_(io),
-      back_(io),
+    : io_(io),
+      front_(io),
+      maxClients_(options.maxClients),
       timer_(io),
       toTarget_(options.impairment),
       fromTarget_(replySettings(options.impairment)),
       maxQueued_(options.maxQueued),
-      frontBuffer_(kLargestUdpPayload),
-      backBuffer_(kLargestUdpPayload) {
+      frontBuffer_(kLargestUdpPayload) {
   const asio::ip::udp::endpoint listen =
       endpointOf(options.listenHost, options.listenPort, "the relay's address");
   target_ = endpointOf(options.targetHost, options.targetPort, "the relay's target");
@@ -41,31 +41,49 @@ UdpRelay::UdpRelay(asio::io_context& io, const UdpRelayOptions& options)
     throw Error("the relay cannot listen on " + options.listenHost + ":" +
                 std::to_string(options.listenPort) + ": " + ec.message());
   }
-  back_.open(target_.protocol());
-  back_.bind(asio::ip::udp::endpoint(target_.protocol(), 0));
-  receive(true);
-  receive(false);
+  receiveFront();
 }
 
-void UdpRelay::receive(bool fromFront) {
-  asio::ip::udp::socket& socket = fromFront ? front_ : back_;
-  std::vector<std::uint8_t>& buffer = fromFront ? frontBuffer_ : backBuffer_;
-  asio::ip::udp::endpoint& sender = fromFront ? frontSender_ : backSender_;
-  socket.async_receive_from(asio::buffer(buffer), sender,
-                            [this, fromFront](asio::error_code ec, std::size_t n) {
+UdpRelay::Client* UdpRelay::clientOf(const asio::ip::udp::endpoint& front) {
+  if (const auto it = clients_.find(front); it != clients_.end()) return it->second.get();
+  if (clients_.size() >= maxClients_) return nullptr;
+  auto client = std::unique_ptr<Client>(
+      new Client{front,
+                 asio::ip::udp::socket(io_, asio::ip::udp::endpoint(target_.protocol(), 0)),
+                 std::vector<std::uint8_t>(kLargestUdpPayload),
+                 {}});
+  Client& c = *client;
+  clients_.emplace(front, std::move(client));
+  receiveBack(c);
+  return &c;
+}
+
+void UdpRelay::receiveFront() {
+  front_.async_receive_from(asio::buffer(frontBuffer_), frontSender_,
+                            [this](asio::error_code ec, std::size_t n) {
                               if (ec == asio::error::operation_aborted) return;
                               if (!ec) {
-                                if (fromFront) {
-                                  client_ = frontSender_;
-                                  haveClient_ = true;
+                                if (Client* client = clientOf(frontSender_)) {
+                                  hold(true, *client, frontBuffer_.data(), n);
+                                } else {
+                                  ++counts_.toTarget.received;
+                                  ++counts_.toTarget.dropped;
                                 }
-                                hold(fromFront, (fromFront ? frontBuffer_ : backBuffer_).data(), n);
                               }
-                              receive(fromFront);
+                              receiveFront();
                             });
 }
 
-void UdpRelay::hold(bool toTarget, const std::uint8_t* data, std::size_t size) {
+void UdpRelay::receiveBack(Client& client) {
+  client.back.async_receive_from(asio::buffer(client.buffer), client.sender,
+                                 [this, &client](asio::error_code ec, std::size_t n) {
+                                   if (ec == asio::error::operation_aborted) return;
+                                   if (!ec) hold(false, client, client.buffer.data(), n);
+                                   receiveBack(client);
+                                 });
+}
+
+void UdpRelay::hold(bool toTarget, Client& client, const std::uint8_t* data, std::size_t size) {
   RelayDirectionCounts& c = toTarget ? counts_.toTarget : counts_.fromTarget;
   ++c.received;
   const DatagramFate fate = (toTarget ? toTarget_ : fromTarget_).next();
@@ -83,7 +101,7 @@ void UdpRelay::hold(bool toTarget, const std::uint8_t* data, std::size_t size) {
     const auto due =
         now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(fate.delayS[i]));
     held_.emplace(std::make_pair(due, arrivals_++),
-                  Held{toTarget, std::vector<std::uint8_t>(data, data + size)});
+                  Held{toTarget, &client, std::vector<std::uint8_t>(data, data + size)});
   }
   armTimer();
 }
@@ -105,11 +123,9 @@ void UdpRelay::sendDue() {
     RelayDirectionCounts& c = h.toTarget ? counts_.toTarget : counts_.fromTarget;
     asio::error_code ec;
     if (h.toTarget) {
-      back_.send_to(asio::buffer(h.bytes), target_, 0, ec);
-    } else if (haveClient_) {
-      front_.send_to(asio::buffer(h.bytes), client_, 0, ec);
+      h.client->back.send_to(asio::buffer(h.bytes), target_, 0, ec);
     } else {
-      ec = asio::error::not_connected;
+      front_.send_to(asio::buffer(h.bytes), h.client->front, 0, ec);
     }
     ++(ec ? c.dropped : c.sent);
     held_.erase(held_.begin());

@@ -1,14 +1,16 @@
 #pragma once
 /// A UDP forwarder with a seeded bad network in between (impairment.h), for testing peers
 /// on one machine (issue 12, item 6). It listens at one address and forwards what it
-/// receives to a target; what the target sends back to it goes to the last address that
-/// sent to the listening side. Each direction has its own Impairment (the reply path
-/// seeded with seed + 1). It runs on the caller's io_context, on one thread: its counts
+/// receives to a target, from a socket of its own for each client (as a NAT would), so
+/// that what the target sends back to that socket goes to that client: several peers can
+/// share one relay in front of another. Each direction has its own Impairment (the reply
+/// path seeded with seed + 1). It runs on the caller's io_context, on one thread: its counts
 /// are read on that thread or once the context has stopped.
 
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,7 @@ struct UdpRelayOptions {
   std::uint16_t targetPort = 0;
   ImpairmentSettings impairment;  ///< both directions
   std::size_t maxQueued = 4096;   ///< datagrams held back at once; more are dropped and counted
+  std::size_t maxClients = 64;    ///< senders it keeps a socket for; others' datagrams are dropped
 };
 
 /// What happened to the datagrams of one direction.
@@ -35,7 +38,7 @@ struct RelayDirectionCounts {
   std::uint64_t lost = 0;        ///< dropped by the impairment
   std::uint64_t duplicated = 0;  ///< sent twice by the impairment
   std::uint64_t sent = 0;        ///< copies sent on, duplicates included
-  std::uint64_t dropped = 0;     ///< queue full, send failed, or a reply with nobody to go to
+  std::uint64_t dropped = 0;     ///< queue full, send failed, or a client too many
 };
 
 struct UdpRelayCounts {
@@ -55,21 +58,32 @@ public:
 
 private:
   using Clock = std::chrono::steady_clock;
+  /// A sender on the front side, and the socket that talks to the target for it.
+  struct Client {
+    asio::ip::udp::endpoint front;
+    asio::ip::udp::socket back;
+    std::vector<std::uint8_t> buffer;
+    asio::ip::udp::endpoint sender;
+  };
   struct Held {
     bool toTarget = true;
+    Client* client = nullptr;
     std::vector<std::uint8_t> bytes;
   };
 
-  void receive(bool fromFront);
-  void hold(bool toTarget, const std::uint8_t* data, std::size_t size);
+  void receiveFront();
+  void receiveBack(Client& client);
+  /// The client that sent from `front`, made on first use; null beyond maxClients.
+  Client* clientOf(const asio::ip::udp::endpoint& front);
+  void hold(bool toTarget, Client& client, const std::uint8_t* data, std::size_t size);
   void armTimer();
   void sendDue();
 
+  asio::io_context& io_;
   asio::ip::udp::socket front_;  ///< where clients send
-  asio::ip::udp::socket back_;   ///< talks to the target
   asio::ip::udp::endpoint target_;
-  asio::ip::udp::endpoint client_;  ///< the last sender on the front side
-  bool haveClient_ = false;
+  std::map<asio::ip::udp::endpoint, std::unique_ptr<Client>> clients_;
+  std::size_t maxClients_;
   asio::steady_timer timer_;
   Impairment toTarget_;
   Impairment fromTarget_;
@@ -77,9 +91,7 @@ private:
   std::map<std::pair<Clock::time_point, std::uint64_t>, Held> held_;  ///< by due time, then arrival
   std::uint64_t arrivals_ = 0;
   std::vector<std::uint8_t> frontBuffer_;
-  std::vector<std::uint8_t> backBuffer_;
   asio::ip::udp::endpoint frontSender_;
-  asio::ip::udp::endpoint backSender_;
   UdpRelayCounts counts_;
 };
 

@@ -21,8 +21,7 @@ using namespace std::chrono_literals;
 
 /// A relay in front of a target socket, both on loopback, the relay's io_context on its
 /// own thread; a client socket that sends to the relay.
-class RelayFixture {
-public:
+struct RelayFixture {
   explicit RelayFixture(ImpairmentSettings impairment) : target_(targetIo_, udp::endpoint(loopback(), 0)) {
     UdpRelayOptions options;
     options.targetPort = target_.local_endpoint().port();
@@ -86,6 +85,25 @@ TEST(UdpRelay, ACleanRelayPassesEverythingInOrderAndRepliesGoBackToTheSender) {
   EXPECT_EQ(c.toTarget.received, 200u);
   EXPECT_EQ(c.toTarget.sent, 200u);
   EXPECT_EQ(c.fromTarget.sent, 10u);
+}
+
+TEST(UdpRelay, EachClientHasItsOwnSocketSoRepliesGoToTheirOwnClient) {
+  RelayFixture f({});
+  udp::socket second(f.clientIo_, udp::endpoint(RelayFixture::loopback(), 0));
+  const udp::endpoint relay(RelayFixture::loopback(), f.relay_->port());
+  // each client's datagram reaches the target from its own relay socket; the target
+  // answers each at that socket, and each answer reaches its own client
+  udp::endpoint firstVia, secondVia;
+  f.send(1);
+  ASSERT_EQ(test::receiveNumber(f.target_, 1000ms, &firstVia), 1u);
+  const std::uint32_t two = 2;
+  second.send_to(asio::buffer(&two, sizeof two), relay);
+  ASSERT_EQ(test::receiveNumber(f.target_, 1000ms, &secondVia), 2u);
+  EXPECT_NE(firstVia, secondVia);
+  for (const auto& [via, n] : {std::pair{secondVia, 20u}, std::pair{firstVia, 10u}})
+    f.target_.send_to(asio::buffer(&n, sizeof n), via);
+  EXPECT_EQ(test::receiveNumber(f.client_, 1000ms), 10u);
+  EXPECT_EQ(test::receiveNumber(second, 1000ms), 20u);
 }
 
 TEST(UdpRelay, LossDuplicationAndJitterShowInWhatArrivesAndInTheCounts) {
