@@ -109,15 +109,18 @@ public:
 /// after every update sent before it, so the updates kept while waiting for it reach up
 /// to now (reading until a quiet gap would return a backlog's first).
 pb::FrameUpdate newestUpdate(net::FrontendClient& client) {
-  pb::ClientMessage ask;
-  ask.mutable_get_statistics();
-  EXPECT_TRUE(client.request(ask).has_statistics());
   std::optional<pb::FrameUpdate> last;
-  while (const auto event = client.nextEvent(0ms)) {
-    if (event->has_frame_update()) last = event->frame_update();
+  for (int attempt = 0; attempt < 500 && !last; ++attempt) {
+    if (attempt > 0) std::this_thread::sleep_for(20ms);  // none yet since the subscription
+    pb::ClientMessage ask;
+    ask.mutable_get_statistics();
+    EXPECT_TRUE(client.request(ask).has_statistics());
+    while (const auto event = client.nextEvent(0ms)) {
+      if (event->has_frame_update()) last = event->frame_update();
+    }
   }
-  EXPECT_TRUE(last) << "no frame update";
-  return last.value_or(pb::FrameUpdate{});
+  if (!last) throw std::runtime_error("no frame update in 10 s");
+  return *last;
 }
 
 glm::dvec3 positionOf(const pb::ObjectState& o) {
@@ -283,6 +286,72 @@ void pushScenario(PeerCommand& test, const Path& path) {
   if (path.delay.empty()) {
     EXPECT_TRUE(summaries[2].at("peer").at("members").empty()) << summaries[2].dump();
   }
+}
+
+TEST_F(PeerCommand, UsageErrorsExitTwoAndSayWhatIsWrong) {
+  for (const auto& [args, says] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"peer"}, "SCENE"},
+           {{"peer", "boxes.glb", "--join", "127.0.0.1:7500"}, "--key"},
+           {{"peer", "boxes.glb", "--device", "script:hold.txt"}, "--take"},
+           {{"peer", "boxes.glb", "--rate", "50"}, "100 to 1000"},
+           {{"peer", "boxes.glb", "--passive", "--take", "left"}, "--passive"},
+           {{"peer", "boxes.glb", "--join", "127.0.0.1:0", "--key", "session.key"}, "--join"},
+       }) {
+    const CliRun r = voxhap(args);
+    EXPECT_EQ(r.exitCode, 2) << args.back() << "\n" << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  }
+  // a key file that is no key: an error naming the file
+  std::ofstream(dir_ / "bad.key") << "not hex\n";
+  const CliRun bad =
+      voxhap({"peer", "boxes.glb", "--move", "left", "--key", "bad.key", "--headless", "--duration", "1"});
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("bad.key"), std::string::npos) << bad.err;
+}
+
+TEST_F(PeerCommand, PeersJoinLeaveAndDieDuringContactAndTheRestGoOn) {
+  Peer a = startPeer("a", {"--take", "middle", "--device", "script:hold.txt", "--name", "ann"});
+  ASSERT_NE(a.udpPort, 0);
+  const std::string at = "127.0.0.1:" + std::to_string(a.udpPort);
+  // b presses its box into a's from the start: a moving join during contact
+  std::ofstream(dir_ / "press.txt") << "0 1 0 0 0 0 0 0\n0.5 1 0 0 0 0.012 0 0\n60 1 0 0 0 0.012 0 0\n";
+  Peer b = startPeer("b", {"--join", at, "--take", "left", "--device", "script:press.txt", "--name", "bob"});
+  ASSERT_NE(b.udpPort, 0);
+  net::FrontendClient client("127.0.0.1", a.frontendPort, 5000ms);
+  client.hello("peer test");
+  pb::ClientMessage subscribe;
+  subscribe.mutable_subscribe()->set_rate_hz(50.0);
+  ASSERT_TRUE(client.request(subscribe).has_done());
+  auto contactsOnMiddle = [&] {
+    std::uint32_t most = 0;
+    for (int i = 0; i < 20; ++i) {
+      most = std::max(most, newestUpdate(client).objects(1).contacts());
+      std::this_thread::sleep_for(50ms);
+    }
+    return most;
+  };
+  EXPECT_GT(contactsOnMiddle(), 0u) << "a's box felt no push";
+  // c joins while they touch, and leaves again
+  Peer c = startPeer("c", {"--join", at, "--take", "right", "--device", "script:hold.txt", "--name", "cyd"});
+  ASSERT_NE(c.udpPort, 0);
+  EXPECT_TRUE(c.child->waitForStderr("'right' is this peer's", 30s)) << c.child->err();
+  const nlohmann::json left = stop(c);
+  EXPECT_EQ(left.at("peer").at("members").size(), 2u) << left.dump();
+  EXPECT_TRUE(a.child->waitForStderr("(cyd) left", 10s)) << a.child->err();
+  // b dies while pressing: a times it out (1 s), and b's box stops where it was, nobody's
+  b.child->signal(SIGKILL);
+  EXPECT_TRUE(a.child->waitForStderr("(bob) timed out", 10s)) << a.child->err();
+  pb::FrameUpdate after = newestUpdate(client);
+  for (int i = 0; i < 100 && after.objects(0).owner_peer() != 0u; ++i) after = newestUpdate(client);
+  EXPECT_EQ(after.objects(0).owner_peer(), 0u);
+  EXPECT_EQ(std::to_string(after.objects(1).owner_peer()), a.id);
+  std::this_thread::sleep_for(300ms);
+  const pb::FrameUpdate later = newestUpdate(client);
+  EXPECT_GT(later.frame(), after.frame());                                // a goes on
+  EXPECT_EQ(positionOf(later.objects(0)), positionOf(after.objects(0)));  // b's box does not move
+  const nlohmann::json summary = stop(a);
+  EXPECT_TRUE(summary.at("peer").at("members").empty()) << summary.dump();
+  EXPECT_EQ(summary.at("peer").at("open_results").at("forged"), 0);
 }
 
 TEST_F(PeerCommand, ThreePeersPushEachOthersBoxesAndAgreeWhereEveryBoxIs) {
