@@ -369,6 +369,14 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
       << "missed deadlines " << last.missedDeadlines << "\nclients          " << c.connections << " ("
       << c.violations << " closed for protocol violations, " << c.refused << " refused), " << c.requests
       << " requests\n";
+  if (peer) {
+    const net::PeerSessionCounts& pc = peer->counts();
+    std::uint64_t dropped = pc.flooded + pc.malformed + pc.unexpected;
+    for (std::size_t r = 1; r < pc.opened.size(); ++r) dropped += pc.opened[r];
+    out << "peer             " << peer->self() << ", " << peer->members().size() << " members at the end; "
+        << pc.datagramsOut << " datagrams (" << pc.bytesOut << " bytes) out, " << pc.datagramsIn << " ("
+        << pc.bytesIn << " bytes) in, " << dropped << " of them dropped\n";
+  }
 }
 
 }  // namespace voxhap::cli

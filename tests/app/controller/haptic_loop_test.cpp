@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "haptics/geometry/mesh_builder.h"
+#include "haptics/runtime/frame_clock.h"
 #include "support/contact_scenes.h"
 
 namespace voxhap::controller {
@@ -152,6 +153,49 @@ TEST_F(HapticLoopTest, ObjectsStartWhereTheInitialStatePutsThem) {
   const FrameSnapshot later = waitFor([](const FrameSnapshot& s) { return s.frame >= 100; });
   EXPECT_NEAR(later.objects[0].pose.position.z, 0.01, 1e-9);
   EXPECT_NEAR(later.objects[0].pose.orientation.w, std::cos(0.25), 1e-9);
+}
+
+TEST_F(HapticLoopTest, InASessionItMovesWhatItOwnsFollowsWhatOthersOwnAndHoldsTheRest) {
+  loop_->stop();
+  HapticLoopOptions options;
+  options.realtime = false;
+  options.localPeer = 7;
+  loop_ = std::make_unique<HapticLoop>(model_, makeSimState(model_), nullptr, options);
+  loop_->start();
+  const Pose placed = loop_->latest().objects[0].pose;
+  // nobody's: it stays where it is, gravity or not
+  const FrameSnapshot held = waitFor([](const FrameSnapshot& s) { return s.frame >= 200; });
+  EXPECT_EQ(held.objects[0].pose.position, placed.position);
+  EXPECT_EQ(held.objects[0].owner, kNoPeer);
+
+  // peer 9's: it goes where 9's stream puts it; a stream of another peer is ignored
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::SetOwner, 0, nullptr, 9, {}}));
+  waitFor([](const FrameSnapshot& s) { return s.objects[0].owner == 9; });
+  RemoteUpdate update;
+  update.object = 0;
+  update.owner = 8;
+  update.sample.body = held.objects[0].body;
+  update.sample.body.comWorld.y += 0.02;
+  update.sample.sentUs = 1;
+  update.arrivalUs = monotonicTime().nowNs() / 1000;
+  ASSERT_TRUE(loop_->postRemote(update));
+  update.owner = 9;
+  update.sample.body.comWorld.y = held.objects[0].body.comWorld.y;
+  update.sample.body.comWorld.x += 0.005;
+  ASSERT_TRUE(loop_->postRemote(update));
+  const FrameSnapshot followed =
+      waitFor([](const FrameSnapshot& s) { return s.objects[0].pose.position.x > 0.0049; });
+  EXPECT_NEAR(followed.objects[0].pose.position.x, 0.005, 1e-12);
+  EXPECT_EQ(followed.objects[0].pose.position.y, placed.position.y);
+
+  // ours: integrated here, so a handle pressing it down moves it towards the plate
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::SetOwner, 0, nullptr, 7, {}}));
+  auto device = std::make_unique<ScriptedDevice>(pressingDevice(0.01, model_));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, device.get(), 0, {}}));
+  const FrameSnapshot pressed = waitFor(
+      [&](const FrameSnapshot& s) { return s.objects[0].pose.position.z < placed.position.z - 2e-4; });
+  EXPECT_LT(pressed.objects[0].pose.position.z, placed.position.z - 2e-4);
+  loop_->stop();  // before the device goes
 }
 
 TEST_F(HapticLoopTest, StopRetiresTheDevicesStillHeldAndKeepsItsStatistics) {
