@@ -26,10 +26,11 @@ struct HandleInput {
 /// An object that a remote peer owns (type-1, DESIGN §8): its owner integrates it, and
 /// this peer moves it as a kinematic body to where the owner's stream puts it. It feels
 /// no force here (its contacts still push the local objects). Its step is held to its
-/// MaxTravel and projected onto the depth limits with its own mass like any other, so
-/// that no contact is skipped and nothing it squeezes is pressed into a third part: it
-/// then lags its stream, and catches up in the next frames once free. Its owner, whose
-/// peer simulates the same contact, stops it there too, one delay later.
+/// MaxTravel like any other, so that no contact is skipped, and the depth limits do not
+/// move it, so that every peer shows it where its owner has it; only a local part trapped
+/// between it and a third makes it yield (depth_limit.h): it then lags its stream until
+/// it is free, and its owner's peer, which simulates the same contact, stops it one delay
+/// later.
 struct KinematicInput {
   bool active = false;
   RigidBodyState targetWorld;  ///< where the stream puts it at the frame's end
