@@ -6,6 +6,7 @@
 #include "app/cli/endpoint_options.h"
 #include "app/cli/option_values.h"
 #include "app/commands/commands.h"
+#include "app/commands/controller_options.h"
 #include "app/controller/controller_run.h"
 #include "app/extraction.h"
 #include "app/sim_options.h"
@@ -18,13 +19,10 @@ namespace {
 struct ControllerArgs {
   std::string scene;
   std::vector<std::string> moving;
-  SimOptions sim;
   std::optional<std::string> listen;
   std::optional<std::string> tokenFile;
   std::string device;
-  std::optional<double> durationS;
-  bool noRealtime = false;
-  bool json = false;
+  ControllerRunArgs run;
 };
 
 int runControllerCommand(const ControllerArgs& args, const CommandContext& c) {
@@ -34,12 +32,9 @@ int runControllerCommand(const ControllerArgs& args, const CommandContext& c) {
   if (!options.scene.empty() && options.moving.empty())
     throw UsageError("--move NAME is required with a SCENE (the object the controller moves)");
   if (options.scene.empty() && !options.moving.empty()) throw UsageError("--move wants a SCENE");
-  const std::string& d = args.device;
-  if (!d.empty() && d.rfind("script:", 0) != 0 && d.rfind("hand:", 0) != 0 && d != "spacemouse" &&
-      d.rfind("spacemouse:", 0) != 0)
-    throw UsageError("--device wants script:FILE, hand:FILE or spacemouse[:/dev/hidrawN], not '" + d + "'");
+  checkDeviceOption(args.device);
   if (!args.device.empty() && options.scene.empty()) throw UsageError("--device wants a SCENE");
-  options.model = sceneModelOptions(args.sim, c.console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
+  applyControllerRunArgs(args.run, c.console, options);
   if (args.listen) {
     const HostPort listen = parseHostPort(*args.listen, "--listen");
     options.listenHost = listen.host;
@@ -47,9 +42,6 @@ int runControllerCommand(const ControllerArgs& args, const CommandContext& c) {
   }
   if (args.tokenFile) options.token = readTokenFile(*args.tokenFile, "--token");
   options.device = args.device;
-  options.durationS = args.durationS;
-  options.realtime = !args.noRealtime;
-  options.json = args.json;
   runController(options, c.console, c.out);
   return kExitOk;
 }
@@ -106,19 +98,7 @@ void addControllerCommand(CommandTree& tree) {
       ->type_name("FILE");
   command.add_option("--device", args->device, "grab the first moved object at start with this device")
       ->type_name("script:FILE|hand:FILE|spacemouse[:PATH]");
-  SimOptions& sim = args->sim;
-  addSimOptions(command, sim,
-                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::Capacity,
-                 SimOption::VoxelMemory, SimOption::DeviceProfile});
-  command.get_option("--voxel-size")
-      ->description("voxel size of the static scene (default 2.5mm, as the demo)");
-  command.get_option("--point-spacing")->description("point spacing of the moving objects (default 1mm)");
-  addParsedOption(
-      command, "--duration", "SECONDS", "stop after this much wall time (default: run until told)",
-      [&duration = args->durationS](const std::string& text) { duration = parseSeconds(text, "duration"); });
-  command.add_flag("--no-realtime", args->noRealtime, "do not try SCHED_FIFO and mlockall");
-  addSimOptions(command, sim, {SimOption::Cache});
-  command.add_flag("--json", args->json, "print the summary as one JSON document on stdout");
+  addControllerRunOptions(command, args->run);
 }
 
 }  // namespace voxhap::cli

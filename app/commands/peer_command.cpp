@@ -7,6 +7,7 @@
 #include "app/cli/endpoint_options.h"
 #include "app/cli/option_values.h"
 #include "app/commands/commands.h"
+#include "app/commands/controller_options.h"
 #include "app/controller/controller_run.h"
 #include "app/controller/inprocess_controller.h"
 #include "app/extraction.h"
@@ -21,7 +22,7 @@ namespace {
 struct PeerArgs {
   std::string scene;
   std::vector<std::string> moving;
-  SimOptions sim;
+  ControllerRunArgs run;
   std::optional<std::string> listen;
   std::optional<std::string> frontend;
   std::optional<std::string> advertise;
@@ -32,11 +33,8 @@ struct PeerArgs {
   std::string name;
   double streamHz = 200.0;
   std::optional<double> timeoutS;
-  std::optional<double> durationS;
   bool passive = false;
   bool headless = false;
-  bool noRealtime = false;
-  bool json = false;
 };
 
 int runPeerCommand(const PeerArgs& args, const CommandContext& c) {
@@ -44,18 +42,13 @@ int runPeerCommand(const PeerArgs& args, const CommandContext& c) {
   options.scene = args.scene;
   options.moving = args.moving;
   const std::string& d = args.device;
-  if (!d.empty() && d.rfind("script:", 0) != 0 && d.rfind("hand:", 0) != 0 && d != "spacemouse" &&
-      d.rfind("spacemouse:", 0) != 0)
-    throw UsageError("--device wants script:FILE, hand:FILE or spacemouse[:/dev/hidrawN], not '" + d + "'");
+  checkDeviceOption(d);
   if (!d.empty() && args.take.empty()) throw UsageError("--device holds the --take OBJECT: name it");
   if (args.passive && (!args.take.empty() || !d.empty())) throw UsageError("--passive cannot --take or hold");
   if (!(args.streamHz >= 100.0 && args.streamHz <= 1000.0))
     throw UsageError("--rate wants 100 to 1000 states per second");
-  options.model = sceneModelOptions(args.sim, c.console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
+  applyControllerRunArgs(args.run, c.console, options);
   options.device = args.device;
-  options.durationS = args.durationS;
-  options.realtime = !args.noRealtime;
-  options.json = args.json;
   options.listenPort = 0;  // several peers on one machine: any free port, printed
   if (args.frontend) {
     const HostPort frontend = parseHostPort(*args.frontend, "--frontend");
@@ -99,7 +92,7 @@ int runPeerCommand(const PeerArgs& args, const CommandContext& c) {
   view.realtime = options.realtime;
   runView(view, c.console, c.out);
   const std::string summary = controller.stopAndWait();
-  if (args.json) c.out << summary;
+  if (args.run.json) c.out << summary;
   return kExitOk;
 }
 
@@ -178,19 +171,7 @@ void addPeerCommand(CommandTree& tree) {
                   [&t = args->timeoutS](const std::string& text) { t = parseSeconds(text, "timeout"); });
   command.add_flag("--passive", args->passive, "see the session, never take or hold anything");
   command.add_flag("--headless", args->headless, "no window: the controller and the peer only");
-  SimOptions& sim = args->sim;
-  addSimOptions(command, sim,
-                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::Capacity,
-                 SimOption::VoxelMemory, SimOption::DeviceProfile});
-  command.get_option("--voxel-size")
-      ->description("voxel size of the static scene (default 2.5mm, as the demo)");
-  command.get_option("--point-spacing")->description("point spacing of the moving objects (default 1mm)");
-  addParsedOption(
-      command, "--duration", "SECONDS", "stop after this much wall time (default: run until told)",
-      [&duration = args->durationS](const std::string& text) { duration = parseSeconds(text, "duration"); });
-  command.add_flag("--no-realtime", args->noRealtime, "do not try SCHED_FIFO and mlockall");
-  addSimOptions(command, sim, {SimOption::Cache});
-  command.add_flag("--json", args->json, "print the summary as one JSON document on stdout");
+  addControllerRunOptions(command, args->run);
 }
 
 }  // namespace voxhap::cli
