@@ -185,6 +185,9 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
     Delta& d = s.deltas[i];
+    // a remote body that did not yield is exactly where its stream put it (rebuilding its
+    // pose from the rotation vector would round it off its target)
+    if (d.kinematic && !d.yielding) continue;
     // of what the integrator asked for, what is not kept
     const glm::dvec3 askedLinear = after[i].comWorld - before[i].comWorld;
     const glm::dvec3 askedAngular =

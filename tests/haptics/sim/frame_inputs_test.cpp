@@ -151,6 +151,27 @@ TEST(FrameInputs, ARemoteObjectGoesWhereItsStreamSaysAndPushesTheLocalOnes) {
   EXPECT_GT(lagM, 0.001);
 }
 
+TEST(FrameInputs, ARemoteObjectHeldStillStaysToTheBitWhileALocalOneRunsIntoIt) {
+  const SimModel model = remoteBoxModel(boxUnderARemoteBox());
+  LocalSimulation sim(model);
+  std::vector<KinematicInput> kinematic(2);
+  kinematic[1].active = true;
+  kinematic[1].targetWorld = sim.state.bodies[1];
+  // tilted, so that a rotation that is only rounded away would show
+  kinematic[1].targetWorld.orientation = glm::angleAxis(0.3, glm::normalize(glm::dvec3(1.0, 2.0, 0.0)));
+  kinematic[1].targetWorld.comWorld.z += 0.002;
+  sim.state.bodies[1] = kinematic[1].targetWorld;
+  sim.state.bodies[0].linearVelocityWorld = glm::dvec3(0.0, 0.0, 0.5);  // up into it
+  std::uint32_t framesLimited = 0;
+  for (int f = 1; f <= 100; ++f) {
+    ASSERT_EQ(sim.step({}, {}, kinematic) & kFrameNonFiniteZeroed, 0);
+    framesLimited += sim.outputs.depthLimit.binding > 0 ? 1 : 0;
+    ASSERT_EQ(sim.state.bodies[1].comWorld, kinematic[1].targetWorld.comWorld) << "frame " << f;
+    ASSERT_EQ(sim.state.bodies[1].orientation, kinematic[1].targetWorld.orientation) << "frame " << f;
+  }
+  EXPECT_GT(framesLimited, 0u);  // the depth limits held the local box back, and only it
+}
+
 TEST(FrameInputs, ANonFiniteRemoteStateIsDroppedAndReported) {
   const SimModel model = remoteBoxModel(boxUnderARemoteBox());
   LocalSimulation sim(model);
