@@ -16,6 +16,7 @@ FrameSnapshot initialSnapshot(const SimModel& model, const SimState& state) {
   for (std::size_t i = 0; i < s.objects.size(); ++i)
     s.objects[i].pose = s.objects[i].handle = objectPose(model, state, i);
   s.forceLayer = state.forceLayer;
+  s.endedUs = monotonicTime().nowNs() / 1000;  // a peer's first heartbeat carries a real clock
   return s;
 }
 

@@ -22,6 +22,9 @@ constexpr std::size_t kChunkBytes = 1000;
 constexpr auto kRetry = std::chrono::milliseconds(200);
 /// The weight of a new round-trip sample in the filtered one.
 constexpr double kRttWeight = 0.1;
+/// A state's send time past this is no monotonic clock (2⁵³ µs is 285 years of uptime; a
+/// double holds every µs up to it).
+constexpr std::int64_t kLatestSentUs = std::int64_t{1} << 53;
 
 double secondsBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
@@ -177,7 +180,8 @@ void PeerSession::onDatagram(std::size_t size) {
   const int bytes = static_cast<int>(payloadBytes);
   if (header.kind == DatagramKind::State) {
     pb::PeerState state;
-    if (!state.ParseFromArray(payloadBuffer_.data(), bytes)) {
+    if (!state.ParseFromArray(payloadBuffer_.data(), bytes) || state.sent_us() <= 0 ||
+        state.sent_us() > kLatestSentUs) {
       ++counts_.malformed;
       return;
     }

@@ -57,6 +57,9 @@ struct TestPeer {
   }
   LocalFrame frame() const {
     LocalFrame f;
+    f.endedUs = std::chrono::duration_cast<std::chrono::microseconds>(
+                    std::chrono::steady_clock::now().time_since_epoch())
+                    .count();
     f.frame = 1;
     for (std::uint32_t o = 0; o < kObjects; ++o) {
       RigidBodyState b;
@@ -210,6 +213,29 @@ TEST(PeerSession, ALeaverIsGoneAtOnceASilentOneAfterTheTimeoutAndTheirObjectsAre
   run(io, {&a}, 80);
   EXPECT_TRUE(a.session->members().empty());
   EXPECT_EQ(a.owners[2], kNoPeer);
+}
+
+TEST(PeerSession, AStateWhoseClockIsImpossibleIsDroppedAsMalformed) {
+  asio::io_context io;
+  TestPeer a(io, "ann");
+  a.start();
+  asio::ip::udp::socket sender(io, asio::ip::udp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
+  const asio::ip::udp::endpoint target(asio::ip::make_address("127.0.0.1"), a.session->port());
+  DatagramSealer sealer(testKey(), a.session->sessionId(), 77, 1);
+  std::vector<std::uint8_t> payload, datagram(kMaxDatagramBytes);
+  for (const std::int64_t sentUs : {std::int64_t{0}, std::int64_t{-5}, (std::int64_t{1} << 53) + 1}) {
+    pb::PeerState state;
+    state.set_sent_us(sentUs);
+    state.set_name("mallory");
+    payload.resize(state.ByteSizeLong());
+    ASSERT_TRUE(state.SerializeToArray(payload.data(), static_cast<int>(payload.size())));
+    sender.send_to(asio::buffer(datagram.data(), sealer.seal(DatagramKind::State, 0, payload, datagram)),
+                   target);
+  }
+  run(io, {&a}, 4);
+  EXPECT_EQ(a.session->counts().opened[static_cast<std::size_t>(OpenResult::Opened)], 3u);
+  EXPECT_EQ(a.session->counts().malformed, 3u);
+  EXPECT_TRUE(a.session->members().empty());
 }
 
 TEST(PeerSession, GarbageAtTheSocketIsCountedAndDropped) {
