@@ -41,7 +41,7 @@ struct PairFrame {
 
 /// Running counts over every frame stepped.
 struct SimCounters {
-  std::uint64_t pairsSkipped = 0;         ///< pair-frames out of range
+  std::uint64_t pairsSkipped = 0;         ///< pair-frames out of range or only streamed
   std::uint64_t travelLimitedFrames = 0;  ///< object-frames that MaxTravel held back
   std::uint64_t depthLimitedFrames = 0;   ///< frames in which a depth limit bound
   /// Frames with more mandatory tests than capacity: the first of a run stops every object,

@@ -63,8 +63,19 @@ Pose objectPose(const SimModel& model, const SimState& state, std::size_t object
 
 namespace {
 
+/// Whether `object` moves only as its remote owner's stream says this frame: a remote body
+/// that is not yielding to the depth limits (depth_limit.h).
+bool onlyStreamed(int object, std::span<const KinematicInput> kinematic, const DepthLimitScratch& s) {
+  if (object == kStaticEnvironment) return true;
+  const auto i = static_cast<std::size_t>(object);
+  return i < kinematic.size() && kinematic[i].active && !s.deltas[i].yielding;
+}
+
 /// Step 1: which pairs are in range, every object's MaxTravel bound, and Eq. 2 over them.
-void planFrame(const SimModel& model, const SimState& state, SimWorkspace& ws, CoherenceFrame& plan) {
+/// A pair of which nothing here moves but by a stream is left to its owners' peers (it
+/// could not change a body here), as if out of range.
+void planFrame(const SimModel& model, const SimState& state, std::span<const KinematicInput> kinematic,
+               SimWorkspace& ws, CoherenceFrame& plan) {
   const bool coherent = !ws.coherence.empty();
   for (double& bound : ws.travelBoundM) bound = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
@@ -72,8 +83,10 @@ void planFrame(const SimModel& model, const SimState& state, SimWorkspace& ws, C
     PairFrame& frame = ws.pairFrames[p];
     const Voxmap& voxmap = model.voxmapOf(pair);
     const Pose shellToVoxmap = shellToVoxmapPose(model, state, pair);
-    frame.inRange =
-        inRange(model.objects[static_cast<std::size_t>(pair.shellObject)], shellToVoxmap, voxmap.grid());
+    const bool streamedOnly = onlyStreamed(pair.shellObject, kinematic, ws.depthScratch) &&
+                              onlyStreamed(pair.voxmapObject, kinematic, ws.depthScratch);
+    frame.inRange = !streamedOnly && inRange(model.objects[static_cast<std::size_t>(pair.shellObject)],
+                                             shellToVoxmap, voxmap.grid());
     if (frame.inRange) frame.transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
     ws.counters.pairsSkipped += frame.inRange ? 0 : 1;
     const bool far = coherent && (!frame.inRange || ws.coherence[p].onlyCollapsed());
@@ -204,7 +217,7 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
   if (inputs.previousStepS > 0.0 && std::isfinite(inputs.previousStepS) && ws.lastTested >= kMeasuredTests) {
     ws.testCostS = 0.9 * ws.testCostS + 0.1 * inputs.previousStepS / ws.lastTested;
   }
-  planFrame(model, state, ws, plan);
+  planFrame(model, state, inputs.kinematic, ws, plan);
 
   std::uint32_t testedInFrame = 0;
   std::uint32_t missing = 0;

@@ -172,6 +172,27 @@ TEST(FrameInputs, ARemoteObjectHeldStillStaysToTheBitWhileALocalOneRunsIntoIt) {
   EXPECT_GT(framesLimited, 0u);  // the depth limits held the local box back, and only it
 }
 
+TEST(FrameInputs, ARemoteObjectOnThePlateIsLeftToItsOwnerUntilItIsLocal) {
+  const SimModel model = remoteBoxModel(boxUnderARemoteBox());
+  LocalSimulation sim(model);
+  std::vector<KinematicInput> kinematic(2);
+  kinematic[1].active = true;
+  kinematic[1].targetWorld = sim.state.bodies[1];
+  // beside the lower box, its bottom 0.1 mm into the plate: a contact only its owner tests
+  kinematic[1].targetWorld.comWorld = glm::dvec3(0.035, 0.0, 0.0029);
+  sim.state.bodies[1] = kinematic[1].targetWorld;
+  for (int f = 0; f < 10; ++f) {
+    ASSERT_EQ(sim.step({}, {}, kinematic), kFrameOk);
+    EXPECT_EQ(sim.object(1).contacts, 0u);
+    EXPECT_EQ(sim.state.bodies[1].comWorld, kinematic[1].targetWorld.comWorld);
+  }
+  // handed over to this peer, it is tested at once and pushed out of the plate
+  kinematic[1].active = false;
+  ASSERT_EQ(sim.step({}, {}, kinematic) & kFrameNonFiniteZeroed, 0);
+  EXPECT_GT(sim.object(1).contacts, 0u);
+  EXPECT_GT(sim.object(1).contactForceWorld.z, 0.0);
+}
+
 TEST(FrameInputs, ANonFiniteRemoteStateIsDroppedAndReported) {
   const SimModel model = remoteBoxModel(boxUnderARemoteBox());
   LocalSimulation sim(model);
