@@ -1,7 +1,10 @@
 // `voxhap peer`: a haptic controller that is one peer of a collaborative session, and
 // (unless headless) its window (controller/controller_run.h, view/view_run.h).
 
+#include <sstream>
+
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
 #include "app/cli/endpoint_options.h"
@@ -90,9 +93,16 @@ int runPeerCommand(const PeerArgs& args, const CommandContext& c) {
   view.connect = HostPort{"127.0.0.1", controller.port()};
   view.passive = args.passive;
   view.realtime = options.realtime;
-  runView(view, c.console, c.out);
+  view.endsWithController = true;  // on --duration or a signal
+  view.json = args.run.json;
+  std::ostringstream viewSummary;
+  runView(view, c.console, args.run.json ? viewSummary : c.out);
   const std::string summary = controller.stopAndWait();
-  if (args.run.json) c.out << summary;
+  if (args.run.json) {
+    nlohmann::ordered_json all = nlohmann::ordered_json::parse(summary);
+    all["view"] = nlohmann::ordered_json::parse(viewSummary.str());
+    c.out << all.dump(2) << "\n";
+  }
   return kExitOk;
 }
 
@@ -126,9 +136,10 @@ void addPeerCommand(CommandTree& tree) {
       "With --headless, front ends (`voxhap view --connect`) reach its controller over TCP at\n"
       "--frontend (default: a free loopback port, printed as 'listening on HOST:PORT').\n"
       "Without --move the scene's dynamic objects move. It runs until SIGINT or SIGTERM (or the\n"
-      "window closes, or --duration), leaves the session, and prints the controller's summary\n"
-      "with the session's members, round trips, bytes and dropped datagrams (--json: one JSON\n"
-      "document).\n\n"
+      "window closes, or --duration), leaves the session, and prints a summary: headless, the\n"
+      "controller's, with the session's members, round trips, bytes and dropped datagrams; with\n"
+      "a window, the window's. --json prints one JSON document: the controller's summary, and\n"
+      "the window's under \"view\".\n\n"
       "Examples:\n"
       "  voxhap peer landing-gear --listen 127.0.0.1:7500 --take actuator --headless\n"
       "  voxhap peer landing-gear --listen 127.0.0.1:7501 --join 127.0.0.1:7500 --key session.key\n"

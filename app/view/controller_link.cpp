@@ -79,9 +79,10 @@ void ControllerLink::shutdown() {
   queue(makeRequest([](pb::ClientMessage& m) { m.mutable_shutdown(); }));
 }
 
-void ControllerLink::fail(const std::string& error) {
+void ControllerLink::fail(const std::string& error, bool closedByController) {
   std::lock_guard lock(mutex_);
   state_.connected = false;
+  state_.closedByController = closedByController;
   state_.error = error;
   ++state_.revision;
 }
@@ -158,7 +159,7 @@ void ControllerLink::run() {
       }
       for (auto m = client->nextMessage(kPollPeriod); m; m = client->nextMessage(0ms)) handle(*m);
       if (!client->isOpen()) {
-        fail("the controller closed the connection");
+        fail("the controller closed the connection", true);
         return;
       }
     }

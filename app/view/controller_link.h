@@ -24,6 +24,7 @@ namespace pb = net::pb;
 /// What the front end knows of the controller, as of the messages received so far.
 struct LinkState {
   bool connected = false;
+  bool closedByController = false;  ///< the link is down because the controller closed it
   std::string error;  ///< why the link is down, or the last refused request's message (one line)
   pb::HelloReply hello;
   std::vector<pb::ObjectInfo> objects;                  ///< moving first, in index order
@@ -75,7 +76,7 @@ private:
   /// Takes one message from the controller into the state (the link thread).
   void handle(const pb::ServerMessage& message);
   void queue(pb::ClientMessage request);
-  void fail(const std::string& error);
+  void fail(const std::string& error, bool closedByController = false);
 
   LinkOptions options_;
   mutable std::mutex mutex_;

@@ -213,7 +213,10 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     input.previousCursorPx = input.cursorPx;
     window.pollEvents();
     state = link.state();
-    if (!state.connected && !state.error.empty()) throw Error("the controller: " + state.error);
+    if (!state.connected && !state.error.empty()) {
+      if (options.endsWithController && state.closedByController) break;
+      throw Error("the controller: " + state.error);
+    }
     const glm::ivec2 fb = window.framebufferSizePx();
     int windowW = 0;
     int windowH = 0;

@@ -37,6 +37,9 @@ struct ViewOptions {
   int frames = 60;                        ///< frames drawn before the screenshot (after loading)
   glm::ivec2 sizePx{1280, 720};
   bool json = false;  ///< the summary as one JSON document
+  /// The controller may end the run (a peer's, on its duration or a signal): the window
+  /// then closes as if its user had closed it, instead of failing.
+  bool endsWithController = false;
 };
 
 /// Runs the window until it is closed (or the screenshot is written), then prints a

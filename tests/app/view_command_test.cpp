@@ -13,6 +13,7 @@
 #include "support/child_process.h"
 #include "support/cli_runner.h"
 #include "support/png_decode.h"
+#include "support/sanitizers.h"
 
 namespace voxhap::test {
 namespace {
@@ -21,15 +22,16 @@ using namespace std::chrono_literals;
 
 class ViewCommand : public CliTest {
 protected:
-  /// `voxhap view ARGS` under `xvfb-run -a`; its JSON summary (exit status checked).
-  nlohmann::json viewHeadless(const std::vector<std::string>& args) {
+  /// `voxhap ARGS` (a command with a window) under `xvfb-run -a`; its JSON summary (exit
+  /// status checked).
+  nlohmann::json underXvfb(const std::vector<std::string>& args) {
     // under AddressSanitizer the view runs without LeakSanitizer: Mesa's DRI driver, unloaded
     // when GLFW terminates, leaves blocks LSan reports from an unknown module and no
     // suppression can name (the HUD tests found it); the view's own parts (link, picker,
     // in-process controller) are leak-checked in this process by their tests
     const char* asan = std::getenv("ASAN_OPTIONS");
     setenv("ASAN_OPTIONS", (std::string(asan ? asan : "") + ":detect_leaks=0").c_str(), 1);
-    std::vector<std::string> all = {"-a", VOXHAP_EXE, "view"};
+    std::vector<std::string> all = {"-a", VOXHAP_EXE};
     all.insert(all.end(), args.begin(), args.end());
     ChildProcess view("/usr/bin/xvfb-run", all, dir_);
     const auto status = view.wait(300s);
@@ -64,12 +66,14 @@ TEST_F(ViewCommand, AHeadlessScreenshotShowsTheSceneTheSameWithAndWithoutTheStat
       "--no-realtime", "--device",     "script:" + (dir_ / "hold.txt").string(),
       "--frames",      "60",           "--size",
       "640x480",       "--json"};
-  std::vector<std::string> cachedArgs = common;
+  std::vector<std::string> cachedArgs = {"view"};
+  cachedArgs.insert(cachedArgs.end(), common.begin(), common.end());
   cachedArgs.insert(cachedArgs.end(), {"--screenshot", (dir_ / "cached.png").string()});
-  std::vector<std::string> fullArgs = common;
+  std::vector<std::string> fullArgs = {"view"};
+  fullArgs.insert(fullArgs.end(), common.begin(), common.end());
   fullArgs.insert(fullArgs.end(), {"--screenshot", (dir_ / "full.png").string(), "--no-static-cache"});
-  const nlohmann::json cached = viewHeadless(cachedArgs);
-  const nlohmann::json full = viewHeadless(fullArgs);
+  const nlohmann::json cached = underXvfb(cachedArgs);
+  const nlohmann::json full = underXvfb(fullArgs);
   ASSERT_FALSE(cached.empty());
   ASSERT_FALSE(full.empty());
   EXPECT_EQ(cached.at("frames_cached"), 60);
@@ -99,6 +103,25 @@ TEST_F(ViewCommand, AHeadlessScreenshotShowsTheSceneTheSameWithAndWithoutTheStat
   // colours, can differ a little between them (a few hundred values); a broken cache (static
   // parts missing, moving ones not depth-tested) changes tens of thousands
   EXPECT_LT(differing, 3840) << "of " << 3 * 640 * 200 << " channel values";
+}
+
+TEST_F(ViewCommand, APeerWithAWindowEndsWithItsDurationAndSummarisesBoth) {
+  if (!haveXvfb()) GTEST_SKIP() << "no /usr/bin/xvfb-run (apt-get install xvfb xauth)";
+  { std::ofstream(dir_ / "hold.txt") << "0 1 0 0 0 0 0 0\n1000 1 0 0 0 0 0 0\n"; }
+  // the controller stops on --duration and closes the window's connection: the window
+  // closes as its user had closed it, and the peer leaves and says what both saw (a
+  // sanitizer's build takes longer to show the scene)
+  const nlohmann::json summary =
+      underXvfb({"peer", "peg-in-hole", "--voxel-size", "1mm", "--take", "peg", "--device",
+                 "script:" + (dir_ / "hold.txt").string(), "--duration", kAddressSanitizer ? "20" : "3",
+                 "--no-realtime", "--json"});
+  ASSERT_FALSE(summary.empty());
+  EXPECT_EQ(summary.at("stopped_by"), "the duration ran out");
+  EXPECT_GT(summary.at("frames").get<std::uint64_t>(), 0u);
+  EXPECT_TRUE(summary.at("peer").at("members").empty());
+  const nlohmann::json& view = summary.at("view");
+  EXPECT_GT(view.at("frames_cached").get<int>() + view.at("frames_uncached").get<int>(), 0) << view.dump();
+  EXPECT_FALSE(view.at("scene_shown_s").is_null()) << view.dump();
 }
 
 }  // namespace
