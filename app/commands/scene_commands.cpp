@@ -88,7 +88,7 @@ void addSceneCommands(CommandTree& tree) {
   info.usage = "voxhap scene info SCENE [--json] [--seed N]";
   info.description =
       "SCENE is a .gltf or .glb file, or a built-in scene name (ball-and-socket,\n"
-      "peg-in-hole, landing-gear). Bounds are in metres, world frame. An object is\n"
+      "peg-in-hole, landing-gear, landing-gear-crew). Bounds are in metres, world frame. An object is\n"
       "closed when every edge of every part is shared by exactly two triangles, and\n"
       "consistently oriented when those two triangles walk it in opposite directions.\n"
       "Roles and merged objects come from the nodes' extras, e.g.\n"
@@ -108,7 +108,8 @@ void addSceneCommands(CommandTree& tree) {
   addUnsignedOption(infoCommand, "--seed", infoArgs->seed, kSeedHelp);
 
   CommandHelp generate;
-  generate.summary = "Write a built-in scene as .glb (ball-and-socket, peg-in-hole, landing-gear).";
+  generate.summary =
+      "Write a built-in scene as .glb (ball-and-socket, peg-in-hole, landing-gear, landing-gear-crew).";
   generate.usage = "voxhap scene generate NAME [-o FILE] [--seed N] [--json]";
   generate.description =
       "Generates a built-in scene procedurally and writes it atomically as binary glTF.\n"

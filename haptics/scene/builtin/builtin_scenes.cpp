@@ -5,13 +5,14 @@
 namespace voxhap {
 
 std::vector<std::string> builtinSceneNames() {
-  return {"ball-and-socket", "peg-in-hole", "landing-gear"};
+  return {"ball-and-socket", "peg-in-hole", "landing-gear", "landing-gear-crew"};
 }
 
 Scene makeBuiltinScene(const std::string& name, std::uint64_t seed, const ProgressFn& progress) {
   if (name == "ball-and-socket") return makeBallAndSocket();
   if (name == "peg-in-hole") return makePegInHole();
   if (name == "landing-gear") return makeLandingGear(seed, progress);
+  if (name == "landing-gear-crew") return makeLandingGearCrew(seed, progress);
   std::string known;
   for (const std::string& candidate : builtinSceneNames()) {
     known += (known.empty() ? "" : ", ") + candidate;

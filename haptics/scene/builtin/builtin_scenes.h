@@ -29,11 +29,18 @@ Scene makePegInHole();
 /// dynamic, several coloured parts) installed among them. Same seed, same scene.
 Scene makeLandingGear(std::uint64_t seed, const ProgressFn& progress = {});
 
+/// The landing gear for a crew of three (type-1 sessions): makeLandingGear's scene, its
+/// actuator to be pulled out as before, and two more dynamic objects waiting beyond the
+/// gear's -y side, clear of it and of the extraction path: a spare actuator below where
+/// the old one comes out and a spare hydraulic hose (a U of rigid line with end
+/// fittings) above it. Same static objects, so the same static voxels (and cache).
+Scene makeLandingGearCrew(std::uint64_t seed, const ProgressFn& progress = {});
+
 /// The names accepted by makeBuiltinScene, in the order `--help` lists them.
 std::vector<std::string> builtinSceneNames();
 
-/// The built-in scene of that name ("ball-and-socket", "peg-in-hole",
-/// "landing-gear"); the seed only matters to the landing gear.
+/// The built-in scene of that name ("ball-and-socket", "peg-in-hole", "landing-gear",
+/// "landing-gear-crew"); the seed only matters to the landing gears.
 /// Throws voxhap::Error naming the known scenes when the name is unknown.
 Scene makeBuiltinScene(const std::string& name, std::uint64_t seed, const ProgressFn& progress = {});
 

@@ -277,9 +277,9 @@ const Scene& landingGear(std::uint64_t seed) {
 // ---------------------------------------------------------------------------------------
 // Names and dispatch
 
-TEST(BuiltinScenes, ListsTheThreeScenes) {
-  EXPECT_EQ(builtinSceneNames(),
-            (std::vector<std::string>{"ball-and-socket", "peg-in-hole", "landing-gear"}));
+TEST(BuiltinScenes, ListsTheFourScenes) {
+  EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"ball-and-socket", "peg-in-hole", "landing-gear",
+                                                           "landing-gear-crew"}));
 }
 
 TEST(BuiltinScenes, UnknownNameThrowsAnErrorListingTheKnownOnes) {
@@ -536,6 +536,56 @@ TEST(LandingGear, ActuatorClearsStaticPartsAndCanBeExtractedForSeveralSeeds) {
     const Aabb out = actuator.boundsAt(path.back());
     const Bounds gear = scene.bounds();
     EXPECT_TRUE(out.max.y < gear.min.y || out.min.y > gear.max.y);
+  }
+}
+
+/// The crew's scene: the gear's static objects unchanged (so its voxels and their cache
+/// are the gear's), and two spares that wait clear of it, with gaps to where the actuator
+/// comes out that their scripts (crew-spare-lift.txt, crew-hose-lower.txt: 0.13 m each)
+/// close: bounding boxes apart are meshes apart.
+TEST(LandingGear, TheCrewsSparesWaitClearOfTheGearAndOfTheActuatorsWayOut) {
+  const Scene crew = makeLandingGearCrew(1);
+  const Scene& gear = landingGear(1);
+  EXPECT_EQ(crew.sourceName, "landing-gear-crew");
+  Bounds staticBounds;
+  std::size_t compared = 0;
+  for (const SceneObject& object : gear.objects) {
+    const SceneObject* same = crew.find(object.name);
+    ASSERT_NE(same, nullptr) << object.name;
+    ASSERT_EQ(same->parts.size(), object.parts.size()) << object.name;
+    for (std::size_t i = 0; i < object.parts.size(); ++i) {
+      EXPECT_EQ(same->parts[i].mesh.positionsWorld, object.parts[i].mesh.positionsWorld) << object.name;
+      EXPECT_EQ(same->parts[i].mesh.triangles, object.parts[i].mesh.triangles) << object.name;
+      ++compared;
+    }
+    if (object.settings.role == ObjectRole::Static) staticBounds.add(object.bounds());
+  }
+  EXPECT_GT(compared, 40u);
+  const SceneObject* spare = crew.find("spare-actuator");
+  const SceneObject* hose = crew.find("spare-hose");
+  ASSERT_NE(spare, nullptr);
+  ASSERT_NE(hose, nullptr);
+  EXPECT_EQ(spare->settings.role, ObjectRole::Dynamic);
+  EXPECT_EQ(hose->settings.role, ObjectRole::Dynamic);
+  Scene spares;
+  spares.objects = {*spare, *hose};
+  expectEveryPartClosedAndOutward(spares);
+
+  // beyond the gear's -y side
+  EXPECT_LT(spare->bounds().max.y, staticBounds.min.y - 0.1);
+  EXPECT_LT(hose->bounds().max.y, staticBounds.min.y - 0.1);
+  // the actuator at the end of its way out: the spare below it, the hose above it
+  Bounds out = crew.find("actuator")->bounds();
+  out.min += landing_gear::extractionPathM().back();
+  out.max += landing_gear::extractionPathM().back();
+  const double spareGapM = out.min.z - spare->bounds().max.z;
+  const double hoseGapM = hose->bounds().min.z - out.max.z;
+  EXPECT_NEAR(spareGapM, 0.10, 1e-6);
+  EXPECT_GT(hoseGapM, 0.08);
+  EXPECT_LT(hoseGapM, 0.13);
+  for (const Bounds& b : {spare->bounds(), hose->bounds()}) {
+    EXPECT_LT(std::max(b.min.x, out.min.x), std::min(b.max.x, out.max.x));  // they overlap in x
+    EXPECT_LT(std::max(b.min.y, out.min.y), std::min(b.max.y, out.max.y));  // and in y
   }
 }
 
