@@ -24,6 +24,7 @@
 #include "net/frontend/pose_proto.h"
 #include "support/child_process.h"
 #include "support/cli_runner.h"
+#include "support/newest_update.h"
 #include "support/sanitizers.h"
 
 namespace voxhap::test {
@@ -71,22 +72,6 @@ protected:
     return p;
   }
 };
-
-/// The newest frame update a subscribed client has had by now (see peer_command_test.cpp).
-pb::FrameUpdate newestUpdate(net::FrontendClient& client) {
-  std::optional<pb::FrameUpdate> last;
-  for (int attempt = 0; attempt < 500 && !last; ++attempt) {
-    if (attempt > 0) std::this_thread::sleep_for(20ms);
-    pb::ClientMessage ask;
-    ask.mutable_get_statistics();
-    EXPECT_TRUE(client.request(ask).has_statistics());
-    while (const auto event = client.nextEvent(0ms)) {
-      if (event->has_frame_update()) last = event->frame_update();
-    }
-  }
-  if (!last) throw std::runtime_error("no frame update in 10 s");
-  return *last;
-}
 
 ExactBody bodyOf(const Scene& scene, const char* name) {
   ExactBody body;

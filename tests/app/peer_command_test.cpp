@@ -22,6 +22,7 @@
 #include "support/child_process.h"
 #include "support/cli_runner.h"
 #include "support/gltf_fixtures.h"
+#include "support/newest_update.h"
 #include "support/sanitizers.h"
 
 namespace voxhap::test {
@@ -108,24 +109,6 @@ public:
     return nlohmann::json::parse(p.child->out(), nullptr, false);
   }
 };
-
-/// The newest frame update a subscribed client has had by now: a request's reply comes
-/// after every update sent before it, so the updates kept while waiting for it reach up
-/// to now (reading until a quiet gap would return a backlog's first).
-pb::FrameUpdate newestUpdate(net::FrontendClient& client) {
-  std::optional<pb::FrameUpdate> last;
-  for (int attempt = 0; attempt < 500 && !last; ++attempt) {
-    if (attempt > 0) std::this_thread::sleep_for(20ms);  // none yet since the subscription
-    pb::ClientMessage ask;
-    ask.mutable_get_statistics();
-    EXPECT_TRUE(client.request(ask).has_statistics());
-    while (const auto event = client.nextEvent(0ms)) {
-      if (event->has_frame_update()) last = event->frame_update();
-    }
-  }
-  if (!last) throw std::runtime_error("no frame update in 10 s");
-  return *last;
-}
 
 glm::dvec3 positionOf(const pb::ObjectState& o) {
   return {o.pose().position_m().x(), o.pose().position_m().y(), o.pose().position_m().z()};
