@@ -541,8 +541,9 @@ TEST(LandingGear, ActuatorClearsStaticPartsAndCanBeExtractedForSeveralSeeds) {
 
 /// The crew's scene: the gear's static objects unchanged (so its voxels and their cache
 /// are the gear's), and two spares that wait clear of it, with gaps to where the actuator
-/// comes out that their scripts (crew-spare-lift.txt, crew-hose-lower.txt: 0.13 m each)
-/// close: bounding boxes apart are meshes apart.
+/// comes out that their scripts (crew-spare-lift.txt, crew-hose-lower.txt: 0.22 m each)
+/// close, and a gap between them that they close without it: bounding boxes apart are
+/// meshes apart.
 TEST(LandingGear, TheCrewsSparesWaitClearOfTheGearAndOfTheActuatorsWayOut) {
   const Scene crew = makeLandingGearCrew(1);
   const Scene& gear = landingGear(1);
@@ -583,6 +584,7 @@ TEST(LandingGear, TheCrewsSparesWaitClearOfTheGearAndOfTheActuatorsWayOut) {
   EXPECT_NEAR(spareGapM, 0.10, 1e-6);
   EXPECT_GT(hoseGapM, 0.08);
   EXPECT_LT(hoseGapM, 0.13);
+  EXPECT_LT(hose->bounds().min.z - spare->bounds().max.z, 2 * 0.22);
   for (const Bounds& b : {spare->bounds(), hose->bounds()}) {
     EXPECT_LT(std::max(b.min.x, out.min.x), std::min(b.max.x, out.max.x));  // they overlap in x
     EXPECT_LT(std::max(b.min.y, out.min.y), std::min(b.max.y, out.max.y));  // and in y
