@@ -114,8 +114,7 @@ TEST_F(LandingGearCrew, ThreeUsersPullTheActuatorOutAndPressBothSparesIntoItWith
   for (std::size_t k = 0; k < 3; ++k) {
     pb::ClientMessage grab;
     grab.mutable_grab()->set_object(kParts[k]);
-    grab.mutable_grab()->set_device(std::string("script:") + VOXHAP_SOURCE_DIR + "/assets/scripts/" +
-                                    kScripts[k]);
+    grab.mutable_grab()->set_device("script:" + asset(std::string("scripts/") + kScripts[k]));
     const pb::ServerMessage reply = peers[k].client->request(grab);
     ASSERT_TRUE(reply.has_done()) << reply.DebugString();
     grabbedS[k] = newestUpdate(*peers[k].client).time_s();

@@ -26,13 +26,6 @@ namespace voxhap::landing_gear {
 /// world, m. The actuator is not rotated: local x runs from the head-end eye to the
 /// rod-end eye, local z is the eyes' (pin) axis.
 inline constexpr glm::dvec3 kActuatorOriginWorld{0.30, 0.0, 3.30};
-/// The crew's scene (makeLandingGearCrew): where the spare actuator sits, as an offset
-/// from the installed one, and the spare hose's U (world, m). Both wait beyond the gear's
-/// -y side, 0.10 m below and 0.11 m above where extractionPathM leaves the actuator.
-inline constexpr glm::dvec3 kSpareActuatorOffsetM{0.0, -1.25, -0.66};
-inline constexpr double kSpareHoseYM = -1.25;
-inline constexpr double kSpareHoseBottomZM = 3.16;  ///< of the U's centreline
-inline constexpr double kSpareHoseRadiusM = 0.0125;
 /// Distance between the two eyes' centres along local x, m.
 inline constexpr double kEyeSpacingM = 0.83;
 /// Outer radius and half height of both eyes, m.
@@ -47,6 +40,13 @@ inline constexpr double kClevisPlateHalfWidthM = 0.060;
 inline constexpr double kClevisPlateThicknessM = 0.020;
 /// Half extent of the actuator's bounding box across its length (y and z), m.
 inline constexpr double kActuatorHalfWidthM = 0.100;
+/// The crew's scene (makeLandingGearCrew): where the spare actuator sits, as an offset
+/// from the installed one, and the spare hose's U (world, m). Both wait beyond the gear's
+/// -y side, 0.10 m below and 0.11 m above where extractionPathM leaves the actuator.
+inline constexpr glm::dvec3 kSpareActuatorOffsetM{0.0, -1.25, -0.66};
+inline constexpr double kSpareHoseYM = -1.25;
+inline constexpr double kSpareHoseBottomZM = 3.16;  ///< of the U's centreline
+inline constexpr double kSpareHoseRadiusM = 0.0125;
 
 /// Brace joints, world, m: drag brace from the trunnion lug via the knee to the strut
 /// collar; side brace from the strut up to its airframe fitting.

@@ -114,13 +114,19 @@ SimModel remoteBoxModel(const Scene& scene) {
   return test::freeModel(scene, {"lower", "upper"}, kVoxel, glm::dvec3(0.0));
 }
 
+/// Kinematic inputs in which the upper box is a remote peer's, streamed where `sim` has it.
+std::vector<KinematicInput> upperIsRemote(const LocalSimulation& sim) {
+  std::vector<KinematicInput> kinematic(2);
+  kinematic[1].active = true;
+  kinematic[1].targetWorld = sim.state.bodies[1];
+  return kinematic;
+}
+
 TEST(FrameInputs, ARemoteObjectGoesWhereItsStreamSaysAndPushesTheLocalOnes) {
   const Scene scene = boxUnderARemoteBox();
   const SimModel model = remoteBoxModel(scene);
   LocalSimulation sim(model);
-  std::vector<KinematicInput> kinematic(2);
-  kinematic[1].active = true;
-  kinematic[1].targetWorld = sim.state.bodies[1];
+  std::vector<KinematicInput> kinematic = upperIsRemote(sim);
   // sideways at 20 mm/s, away from everything: exactly where the stream says, turning too
   kinematic[1].targetWorld.linearVelocityWorld = glm::dvec3(0.02, 0.0, 0.0);
   for (int f = 1; f <= 100; ++f) {
@@ -154,9 +160,7 @@ TEST(FrameInputs, ARemoteObjectGoesWhereItsStreamSaysAndPushesTheLocalOnes) {
 TEST(FrameInputs, ARemoteObjectHeldStillStaysToTheBitWhileALocalOneRunsIntoIt) {
   const SimModel model = remoteBoxModel(boxUnderARemoteBox());
   LocalSimulation sim(model);
-  std::vector<KinematicInput> kinematic(2);
-  kinematic[1].active = true;
-  kinematic[1].targetWorld = sim.state.bodies[1];
+  std::vector<KinematicInput> kinematic = upperIsRemote(sim);
   // tilted, so that a rotation that is only rounded away would show
   kinematic[1].targetWorld.orientation = glm::angleAxis(0.3, glm::normalize(glm::dvec3(1.0, 2.0, 0.0)));
   kinematic[1].targetWorld.comWorld.z += 0.002;
@@ -175,9 +179,7 @@ TEST(FrameInputs, ARemoteObjectHeldStillStaysToTheBitWhileALocalOneRunsIntoIt) {
 TEST(FrameInputs, ARemoteObjectOnThePlateIsLeftToItsOwnerUntilItIsLocal) {
   const SimModel model = remoteBoxModel(boxUnderARemoteBox());
   LocalSimulation sim(model);
-  std::vector<KinematicInput> kinematic(2);
-  kinematic[1].active = true;
-  kinematic[1].targetWorld = sim.state.bodies[1];
+  std::vector<KinematicInput> kinematic = upperIsRemote(sim);
   // beside the lower box, its bottom 0.1 mm into the plate: a contact only its owner tests
   kinematic[1].targetWorld.comWorld = glm::dvec3(0.035, 0.0, 0.0029);
   sim.state.bodies[1] = kinematic[1].targetWorld;
@@ -196,9 +198,7 @@ TEST(FrameInputs, ARemoteObjectOnThePlateIsLeftToItsOwnerUntilItIsLocal) {
 TEST(FrameInputs, ANonFiniteRemoteStateIsDroppedAndReported) {
   const SimModel model = remoteBoxModel(boxUnderARemoteBox());
   LocalSimulation sim(model);
-  std::vector<KinematicInput> kinematic(2);
-  kinematic[1].active = true;
-  kinematic[1].targetWorld = sim.state.bodies[1];
+  std::vector<KinematicInput> kinematic = upperIsRemote(sim);
   kinematic[1].targetWorld.comWorld.x = std::numeric_limits<double>::quiet_NaN();
   const RigidBodyState before = sim.state.bodies[1];
   EXPECT_EQ(sim.step({}, {}, kinematic), kFrameNonFiniteZeroed);
