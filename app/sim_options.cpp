@@ -43,6 +43,12 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
         command.add_flag("--pre-contact-damping", o.preContactDamping,
                          "damp points approaching in the layer just outside the force layer");
         break;
+      case SimOption::SurfaceContact:
+        command.add_flag("--surface-contact", o.surfaceContact,
+                         "contact finer than a voxel: parts push apart once closer than half the point "
+                         "spacing, measured from exact surface planes kept with the voxels (off: the "
+                         "paper's voxel planes, parts resting 1.6-1.9 voxels apart)");
+        break;
       case SimOption::Capacity:
         addParsedOption(command, "--capacity", "N", "point tests per frame (default: measured online)",
                         [&o](const std::string& text) {
@@ -106,6 +112,10 @@ SceneModelOptions sceneModelOptions(const SimOptions& o, Console& console, doubl
   if (o.pointLayer) options.pointFreeLayer = *o.pointLayer;
   options.sim.geometricalAwareness = !o.noAwareness;
   options.sim.preContactDamping = o.preContactDamping;
+  if (o.surfaceContact) {
+    options.sim.surfaceContact = true;
+    options.sim.forceLayer = kSurfaceContactForceLayer;
+  }
   options.sim.coherence.enabled = !o.bruteForce;
   options.sim.coherence.pointDrifting = !o.noDrifting;
   if (o.capacity) options.sim.coherence.capacityTests = static_cast<double>(*o.capacity);

@@ -11,6 +11,14 @@ namespace voxhap {
 /// exact surfaces from interpenetrating (paper §3.2).
 inline constexpr std::uint8_t kDefaultForceLayer = distanceValue(2);
 
+/// The force layer of contact by surface planes at up to a voxel (ContactParams::
+/// surfaceContactM): the first free layer holds every point within a voxel of the surface.
+inline constexpr std::uint8_t kSurfaceContactForceLayer = distanceValue(1);
+/// Contact by surface planes begins this many point spacings from the surface: an edge or
+/// corner at right angles, which may meet the other's surface between its points, reaches
+/// a point within half a spacing of it before it can pass between them.
+inline constexpr double kSurfaceContactSpacings = 0.75;
+
 /// Above this many points pushing, the per-point stiffness and damping are scaled down
 /// so that the total stays at kStiffContacts · per-point stiffness (the original VPS caps
 /// at ~10). Every pushing point counts in full, however shallow: the cap bounds the
@@ -39,6 +47,12 @@ struct ContactParams {
   /// default: it adds a viscous feel before contact and tests ~2x the points near it.
   /// The sampler then reads up to sampledLayer().
   bool preContactDamping = false;
+  /// Contact finer than a voxel: > 0 when the voxmap's surface planes (surface_planes.h)
+  /// measure the contacts, a point then pushing once it lies closer than this to the voxmap
+  /// object's exact surface, m; 0: the paper's tangent planes through the voxels' centres.
+  /// Every point then samples the surface field (awareness off), and the force layer only
+  /// bounds which voxels are read: it must reach the voxels that hold points this close.
+  double surfaceContactM = 0.0;
 
   /// The largest value a point test must report: the force layer, or the layer beyond it
   /// when pre-contact damping is on (never beyond the encoding's `maxValue`).

@@ -82,6 +82,7 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
   const VoxelGrid& grid = voxmap.grid();
   const double s = grid.voxelSizeM;
   const auto shifts = fieldShiftsByFeature(params.geometricalAwareness, voxmap.encoding());
+  const bool planes = params.surfaceContactM > 0.0 && voxmap.hasSurfacePlanes();
 
   // unscaled sums (voxmap frame), in contact [0] and damped before contact [1]; each is
   // capped on its own at the end
@@ -92,13 +93,26 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     const glm::dvec3 p =
         shellToVoxmapRotation * glm::dvec3(shell.positionsLocal[c.point]) + shellToVoxmap.position;
     const glm::dvec3 n = shellToVoxmapRotation * glm::dvec3(shell.normalsLocal[c.point]);
-    const PointFeature feature = shell.features[c.point];
-    const glm::dvec3 pushDirection = pushDirectionOf(voxmap, c, feature, params.geometricalAwareness,
-                                                     shifts[static_cast<std::size_t>(feature)], n, out);
     const bool beforeContact = c.value > params.forceLayer;
-    const double depth = beforeContact ? 0.0
-                                       : glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +
-                                             static_cast<double>(params.forceLayer - c.value) * s;
+    const SurfacePlane* plane = planes ? voxmap.surfacePlane(c.ijkVoxel) : nullptr;
+    // no plane: deep inside (the voxel's tangent plane stands in), or too far out to push
+    if (planes && !plane && c.value > kValueFeature) continue;
+    glm::dvec3 pushDirection;
+    double depth = 0.0;
+    if (plane) {
+      const glm::dvec3 outward = plane->outwardUnit();
+      pushDirection = -outward;
+      const double distanceM =
+          plane->distanceVoxels() * s + glm::dot(p - grid.voxelCentre(c.ijkVoxel), outward);
+      if (!beforeContact) depth = params.surfaceContactM - distanceM;
+    } else {
+      const PointFeature feature = shell.features[c.point];
+      pushDirection = pushDirectionOf(voxmap, c, feature, params.geometricalAwareness,
+                                      shifts[static_cast<std::size_t>(feature)], n, out);
+      if (!beforeContact)
+        depth = glm::dot(p - grid.voxelCentre(c.ijkVoxel), pushDirection) +
+                static_cast<double>(params.forceLayer - c.value) * s;
+    }
     out.contactPoints += beforeContact ? 0 : 1;
     if (sink && !beforeContact && depth > sink->minDepthM && out.depthRows < sink->rows.size()) {
       DepthRow& row = sink->rows[out.depthRows++];
@@ -106,6 +120,7 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
       row.intoVoxmapWorld = applyRotation(voxmapMotion.poseWorld, pushDirection);
       row.depthM = depth;
       row.floorM = sink->minDepthM;
+      row.surfacePlane = plane != nullptr;
     }
     if (!beforeContact && depth <= 0.0) continue;
     const double approach = glm::dot(linear + glm::cross(angular, p), pushDirection);

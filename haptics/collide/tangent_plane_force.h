@@ -22,6 +22,14 @@
 /// up to 0.42·s of depth at every voxel crossing, which rocked it over. With u = g for a
 /// face-parallel surface d is continuous across voxels.
 ///
+/// Contact finer than a voxel (ContactParams::surfaceContactM = L > 0, beyond the paper):
+/// the voxel's surface plane (surface_planes.h) gives the point's distance from the voxmap
+/// object's exact surface, φ = φ_c + (p − c)·n_c, and u = −n_c; the depth is d = L − φ,
+/// so that a point pushes once it comes closer than L, along the surface's exact normal
+/// (edges and corners included: no quantized fall direction). A contact without a plane
+/// pushes as above if it lies in an interior or surface voxel (deep inside, past the
+/// planes' reach), and not at all in a free voxel.
+///
 /// Contacts beyond the force layer (value F + 1, sampled for pre-contact damping) only
 /// damp: b·v_u along −u while they approach, nothing otherwise.
 ///
@@ -55,10 +63,12 @@ struct DepthRow {
   glm::dvec3 pointWorld{0.0};       ///< m
   glm::dvec3 intoVoxmapWorld{0.0};  ///< unit
   double depthM = 0.0;              ///< tangent-plane depth d, m (may be negative)
-  double limitM = 0.0;   ///< the deepest mean depth its pair's rows may reach, m (set by the caller)
-  double floorM = 0.0;   ///< d₀: the sink's minDepthM, below which a row weighs nothing, m
-  int shellObject = 0;   ///< moving object index of the pointshell (set by the caller)
-  int voxmapObject = 0;  ///< moving object index of the voxmap, or −1: static (set by the caller)
+  double limitM = 0.0;        ///< the deepest mean depth its pair's rows may reach, m (set by the caller)
+  double floorM = 0.0;        ///< d₀: the sink's minDepthM, below which a row weighs nothing, m
+  int shellObject = 0;        ///< moving object index of the pointshell (set by the caller)
+  int voxmapObject = 0;       ///< moving object index of the voxmap, or −1: static (set by the caller)
+  bool surfacePlane = false;  ///< measured by a surface plane (ContactParams::surfaceContactM)
+  bool limited = false;       ///< given a limit of its own this frame (depth_limit.h)
 };
 
 /// Where tangentPlaneWrench writes the contacts that may limit this frame's motion: every

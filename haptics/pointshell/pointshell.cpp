@@ -129,6 +129,8 @@ void checkPointshellOptions(const PointshellOptions& options) {
     throw Error("pointshell free layer must be 0 (surface) to " + std::to_string(kMaxFreeLayer) + ", not " +
                 std::to_string(options.freeLayer));
   }
+  if (options.onSurface && options.freeLayer > 0)
+    throw Error("pointshell points are on the surface or in a free layer, not both");
 }
 
 Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
@@ -213,7 +215,14 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
                                  : (b & kEdgeBit) ? PointFeature::Edge
                                                   : PointFeature::Surface;
           glm::dvec3 normal(0.0, 0.0, 1.0);
-          if (options.freeLayer > 0) {
+          glm::dvec3 base = centre;
+          if (options.onSurface) {
+            // a surface voxel's centre is within half its diagonal of the surface
+            if (const auto nearest = scene.closestPoint(centre, s)) {
+              base = nearest->point;
+              normal = pseudoNormals.normalAt(*nearest, kFeatureTolerance * s);
+            }
+          } else if (options.freeLayer > 0) {
             if (const auto nearest = scene.closestPoint(centre, searchM);
                 nearest && nearest->distanceM > 0.0) {
               normal = (centre - nearest->point) / nearest->distanceM;
@@ -231,7 +240,7 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
             // a surface voxel's centre is within half its diagonal of the surface
             normal = pseudoNormals.normalAt(*nearest, kFeatureTolerance * s);
           }
-          const glm::dvec3 position = centre + options.displacementM * normal;
+          const glm::dvec3 position = base + options.displacementM * normal;
           shell.positionsLocal[at] = glm::vec3(position);
           shell.normalsLocal[at] = glm::vec3(normal);
           shell.features[at] = feature;

@@ -32,6 +32,10 @@ struct PointshellOptions {
   /// what moving the force layer gives (paper §3.2); their normals point away from the
   /// nearest surface point, their labels those of the surface voxel it lies in.
   int freeLayer = 0;
+  /// Points on the surface: each surface voxel's point at the surface point nearest its
+  /// centre (then displaced), not at the centre, which may lie 0.87 voxel off it. For
+  /// contact finer than a voxel (surface planes); not with a free layer.
+  bool onSurface = false;
   int threads = 0;  ///< 0: all cores
 };
 

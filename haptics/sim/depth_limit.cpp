@@ -17,6 +17,8 @@ constexpr double kToleranceOfLimit = 1e-6;
 /// What the last pass lets the sweeps leave past a limit, as a share of it, before it
 /// scales the whole step down.
 constexpr double kResidualOfLimit = 0.02;
+/// Rounds of giving passing rows limits of their own.
+constexpr int kRowRounds = 4;
 
 using Delta = DepthLimitScratch::Delta;
 using Limit = DepthLimitScratch::Limit;
@@ -76,7 +78,8 @@ void setMasses(Limit& l, std::span<const Delta> deltas) {
 std::size_t groupRows(DepthLimitScratch& s, std::size_t rowCount, std::span<const RigidBodyState> before) {
   std::size_t count = 0;
   for (std::size_t r = 0; r < rowCount; ++r) {
-    const DepthRow& row = s.rows[r];
+    DepthRow& row = s.rows[r];
+    row.limited = false;
     const double weight = row.depthM - row.floorM;
     if (!(weight > 0.0)) continue;
     if (count == 0 || s.limits[count - 1].bodyA != row.shellObject ||
@@ -139,6 +142,30 @@ std::uint32_t setUp(std::span<const MovingObjectModel> objects, std::span<const 
   return binding;
 }
 
+/// Gives a limit of its own to each surface-plane row that the step as solved so far would
+/// take past its pair's limit (room allowing, each row once), after the first `count`
+/// limits; returns how many.
+std::size_t limitPassingRows(DepthLimitScratch& s, std::size_t count, std::size_t rowCount,
+                             std::span<const RigidBodyState> before) {
+  std::size_t added = 0;
+  for (std::size_t r = 0; r < rowCount && count + added < s.limits.size(); ++r) {
+    DepthRow& row = s.rows[r];
+    if (!row.surfacePlane || row.limited) continue;
+    Limit& l = s.limits[count + added];
+    l = Limit{};
+    l.bodyA = row.shellObject;
+    l.bodyB = row.voxmapObject;
+    l.limitM = row.limitM;
+    addRow(l, row, 1.0, before);
+    normalise(l);
+    setMasses(l, s.deltas);
+    if (gainOf(l, s.deltas) <= l.targetM + kToleranceOfLimit * l.limitM) continue;
+    row.limited = true;
+    ++added;
+  }
+  return added;
+}
+
 /// The sweeps, then the scale of the whole step that the last pass needs.
 double solve(DepthLimitScratch& s, std::size_t count) {
   for (int iteration = 0; iteration < kIterations; ++iteration) sweep(s, count);
@@ -160,7 +187,8 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
   DepthLimitFrame frame;
   frame.rows = static_cast<std::uint32_t>(rowCount);
   for (Delta& d : s.deltas) d.refusedLinear = d.refusedAngular = glm::dvec3(0.0);
-  const std::size_t count = rowCount == 0 ? 0 : groupRows(s, rowCount, before);
+  std::size_t count = rowCount == 0 ? 0 : groupRows(s, rowCount, before);
+  frame.pairs = static_cast<std::uint32_t>(count);
   // a remote body yields only while it touches what it was trapped against
   for (std::size_t i = 0; i < s.deltas.size(); ++i) {
     Delta& d = s.deltas[i];
@@ -170,10 +198,18 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
                              [body](const Limit& l) { return l.bodyA == body || l.bodyB == body; });
   }
   if (rowCount == 0) return frame;
-  frame.pairs = static_cast<std::uint32_t>(count);
   frame.binding = setUp(objects, before, after, s, count, false);
-  if (frame.binding == 0) return frame;
-  double scale = solve(s, count);
+  double scale = frame.binding == 0 ? 1.0 : solve(s, count);
+  // a pair's mean may hold while some of its points pass it: those measured exactly get
+  // limits of their own, a few rounds, as long as there is room
+  for (int round = 0; round < kRowRounds; ++round) {
+    const std::size_t added = limitPassingRows(s, count, rowCount, before);
+    if (added == 0) break;
+    count += added;
+    frame.rowLimits += static_cast<std::uint32_t>(added);
+    scale = solve(s, count);
+  }
+  if (frame.binding == 0 && frame.rowLimits == 0) return frame;
   if (scale < 1.0 &&
       std::any_of(s.deltas.begin(), s.deltas.end(), [](const Delta& d) { return d.kinematic; })) {
     // a local part trapped against a remote one: the remote one yields too

@@ -31,6 +31,11 @@
 ///     half voxel by which the point may lie off its own exact surface;
 ///   * the exact-probe tests (tests/haptics/sim/non_penetration_test.cpp) check the rest,
 ///     the points deeper than their pair's mean among them.
+/// With surface planes (ContactParams::surfaceContactM), whose depths are continuous
+/// across voxels, single points may be held too: a row measured by a surface plane that
+/// the solved step would take past the limit gets a limit of its own (kRowLimits a frame,
+/// a few rounds), each bound to the tolerance of the first sweeps' test, so that no point
+/// creeps in by the last pass's residual frame after frame.
 /// Past their limits, rows are pushed back out by their springs, as before. The pull that
 /// the contacts refuse is felt through the coupling, whose force the device profile
 /// saturates (simulation.cpp): the body rests against the limits while the user feels the
@@ -62,12 +67,28 @@ namespace voxhap {
 /// The deepest tangent-plane depth a contact may reach, in voxels of its voxmap.
 inline constexpr double kDepthLimitVoxels = 0.5;
 
+/// Of the contact distance of surface planes, the depth a contact may reach: the points
+/// then stay half the contact distance outside the other's exact surface.
+inline constexpr double kSurfaceDepthLimitShare = 0.5;
+
+/// The deepest mean depth a pair's contacts may reach, m: kDepthLimitVoxels of voxels
+/// `voxelSizeM` for the voxels' tangent planes; with surface planes, kSurfaceDepthLimitShare
+/// of their contact distance.
+inline double depthLimitM(const ContactParams& params, double voxelSizeM) {
+  return params.surfaceContactM > 0.0 ? kSurfaceDepthLimitShare * params.surfaceContactM
+                                      : kDepthLimitVoxels * voxelSizeM;
+}
+
+/// How many rows measured by surface planes may get limits of their own in a frame.
+inline constexpr std::size_t kRowLimits = 32;
+
 /// What the projection did in one frame.
 struct DepthLimitFrame {
-  std::uint32_t rows = 0;     ///< rows considered
-  std::uint32_t pairs = 0;    ///< pairs with rows
-  std::uint32_t binding = 0;  ///< pairs whose limit the step would have passed
-  double scale = 1.0;         ///< the last pass's scale of the whole step (1: none needed)
+  std::uint32_t rows = 0;       ///< rows considered
+  std::uint32_t pairs = 0;      ///< pairs with rows
+  std::uint32_t binding = 0;    ///< pairs whose limit the step would have passed
+  std::uint32_t rowLimits = 0;  ///< rows given limits of their own (surface planes)
+  double scale = 1.0;           ///< the last pass's scale of the whole step (1: none needed)
 };
 
 /// Room for the projection, sized at load time (makeSimWorkspace).
@@ -109,10 +130,10 @@ struct DepthLimitScratch {
 
   /// Room for `rowCapacity` rows in `pairs` pairs among `bodies` moving objects.
   DepthLimitScratch(std::size_t rowCapacity = 0, std::size_t pairs = 0, std::size_t bodies = 0)
-      : rows(rowCapacity), limits(pairs), deltas(bodies) {}
+      : rows(rowCapacity), limits(pairs + kRowLimits), deltas(bodies) {}
 
   std::vector<DepthRow> rows;  ///< this frame's rows, pair by pair, filled by the contacts' pass
-  std::vector<Limit> limits;   ///< this frame's pairs with rows
+  std::vector<Limit> limits;   ///< this frame's limits: the pairs' means, then rows' own
   std::vector<Delta> deltas;   ///< per moving object
 };
 

@@ -30,7 +30,9 @@ BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& moving
   };
   VoxelizeOptions voxelOptions;
   voxelOptions.encoding = VoxelEncoding::forBits(options.bitsPerField);
-  voxelOptions.buildFeatureFields = options.sim.geometricalAwareness;
+  // contact by surface planes reads only the surface field
+  voxelOptions.surfacePlanes = options.sim.surfaceContact;
+  voxelOptions.buildFeatureFields = options.sim.geometricalAwareness && !voxelOptions.surfacePlanes;
   std::optional<Voxmap> staticVoxmap;
   std::shared_ptr<VoxelPager> staticPager;
   if (!fixed.empty()) {
@@ -59,6 +61,7 @@ BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& moving
     shellOptions.pointSpacingM = options.pointSpacingM;
     shellOptions.displacementM = options.pointDisplacementM;
     shellOptions.freeLayer = options.pointFreeLayer;
+    shellOptions.onSurface = options.sim.surfaceContact;
     object.shell = options.pointshellFn(source, shellOptions, stage(static_cast<double>(1 + 2 * i)));
     if (moving.size() > 1) {
       voxelOptions.voxelSizeM = options.pointSpacingM;

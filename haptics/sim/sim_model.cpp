@@ -49,6 +49,21 @@ ContactParams pairParams(const SimModel& model, const PairModel& pair, const Sim
   params.forceLayer = options.forceLayer;
   params.geometricalAwareness = options.geometricalAwareness;
   params.preContactDamping = options.preContactDamping;
+  if (options.surfaceContact && voxmap.hasSurfacePlanes()) {
+    const Pointshell& shell = model.objects[static_cast<std::size_t>(pair.shellObject)].shell;
+    const double voxelM = voxmap.grid().voxelSizeM;
+    if (options.forceLayer < kSurfaceContactForceLayer) {
+      throw Error("force layer " + std::to_string(options.forceLayer) +
+                  " does not reach the points that surface contact pushes (at least " +
+                  std::to_string(kSurfaceContactForceLayer) + ")");
+    }
+    if (shell.pointSpacingM > 2.0 * voxelM) {
+      throw Error("surface contact needs points at most two voxels apart, not " +
+                  std::to_string(shell.pointSpacingM / voxelM) + " voxels");
+    }
+    params.surfaceContactM = kSurfaceContactSpacings * shell.pointSpacingM;
+    params.geometricalAwareness = false;
+  }
   params.pointStiffnessNPerM = inertia * omega * omega / kStiffContacts;
   params.pointDampingNsPerM = 2.0 * kContactDampingRatio * inertia * omega / kStiffContacts;
   return params;

@@ -120,6 +120,10 @@ struct SimOptions {
   std::uint8_t forceLayer = kDefaultForceLayer;
   bool geometricalAwareness = true;
   bool preContactDamping = false;  ///< see ContactParams
+  /// Contact by surface planes where a pair's voxmap has them (ContactParams::
+  /// surfaceContactM: half the point spacing of the pair's pointshell); needs a force
+  /// layer of at least kSurfaceContactForceLayer. Off: the paper's voxel tangent planes.
+  bool surfaceContact = false;
   DeviceLimits deviceLimits;
   CoherenceOptions coherence;
 };

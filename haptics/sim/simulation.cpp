@@ -236,7 +236,7 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     testedInFrame += tested;
     const MovingObjectModel& shellObject = model.objects[static_cast<std::size_t>(pair.shellObject)];
     // rows for the contacts that the step can take past their limit (depth_limit.h)
-    const double limitM = kDepthLimitVoxels * model.voxmapOf(pair).grid().voxelSizeM;
+    const double limitM = depthLimitM(params, model.voxmapOf(pair).grid().voxelSizeM);
     const DepthRowSink sink{std::span(ws.depthScratch.rows).subspan(rowCount),
                             limitM - ws.pairFrames[p].relativeTravelBoundM};
     const PairWrench w = tangentPlaneWrench(

@@ -29,7 +29,8 @@ namespace voxhap {
 
 /// Bump whenever what a cache file holds, or how it is made, changes.
 /// 2: keys and checksums are XXH3-128 (ContentHash).
-inline constexpr std::uint32_t kCacheFormatVersion = 2;
+/// 3: voxmaps end with their surface planes (surface_planes.h), none when not asked for.
+inline constexpr std::uint32_t kCacheFormatVersion = 3;
 
 /// What a cache file holds.
 enum class CacheKind : std::uint32_t { Voxmap = 1, Pointshell = 2 };

@@ -127,6 +127,7 @@ void saveVoxelized(CacheFileWriter& w, const VoxelizedObject& v) {
   w.putArray(v.voxmap.chunkEntries());
   w.putArray(v.voxmap.voxelBytes());
   w.putArray(v.voxmap.chunkDistances());
+  w.putArray(v.voxmap.surfacePlanes());
 }
 
 /// What a voxmap cache file holds before its arrays.
@@ -154,6 +155,13 @@ VoxmapHeader readVoxmapHeader(CacheFileReader& r, const VoxelizeOptions& options
   return h;
 }
 
+/// Throws CacheFileError unless the file's `planeCount` surface planes are what `options`
+/// ask for (kVoxelsPerChunk per mixed chunk, or none).
+void checkPlanes(std::size_t planeCount, std::size_t mixedChunks, const VoxelizeOptions& options) {
+  if (planeCount != (options.surfacePlanes ? mixedChunks * kVoxelsPerChunk : 0))
+    throw CacheFileError("is corrupt (surface planes do not match the voxmap)");
+}
+
 VoxelizedObject loadVoxelized(CacheFileReader& r, const VoxelizeOptions& options) {
   const auto [grid, encoding, stats] = readVoxmapHeader(r, options);
   VoxelizedObject v;
@@ -165,8 +173,11 @@ VoxelizedObject loadVoxelized(CacheFileReader& r, const VoxelizeOptions& options
   const std::string problem =
       Voxmap::validate(grid, encoding, hyper, chunks, voxelBytes.size(), chunkDistances.size());
   if (!problem.empty()) throw CacheFileError("is corrupt (" + problem + ")");
+  auto planes = r.getArray<SurfacePlane>();
   v.voxmap = Voxmap(grid, encoding, std::move(hyper), std::move(chunks), std::move(voxelBytes),
                     std::move(chunkDistances));
+  checkPlanes(planes.size(), v.voxmap.mixedChunkCount(), options);
+  if (options.surfacePlanes) v.voxmap.setSurfacePlanes(std::move(planes));
   return v;
 }
 
@@ -212,6 +223,7 @@ Digest128 voxmapKey(std::span<const SceneObject* const> objects, const VoxelizeO
   hash.add(static_cast<std::int32_t>(options.encoding.bitsPerField));
   hash.add(static_cast<std::int32_t>(options.encoding.rangeVoxels));
   hash.add(static_cast<std::uint8_t>(options.buildFeatureFields));
+  hash.add(static_cast<std::uint8_t>(options.surfacePlanes));
   return hash.digest();
 }
 
@@ -237,6 +249,9 @@ std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& k
   const std::uint64_t wordsOffset = r.fileOffset();
   r.skip(wordBytes);
   auto chunkDistances = r.getArray<std::uint8_t>();
+  // a paged voxmap has no surface planes (its contacts take the voxels' tangent planes)
+  const auto planeCount = r.get<std::uint64_t>();
+  r.skip(planeCount * sizeof(SurfacePlane));
   r.finish();
   const std::string problem =
       Voxmap::validate(grid, encoding, hyper, chunks, wordBytes, chunkDistances.size());
@@ -331,6 +346,7 @@ CachedPointshell pointshellCached(std::span<const SceneObject* const> objects,
   hash.addDouble(options.pointSpacingM);
   hash.addDouble(options.displacementM);
   hash.add(options.freeLayer);
+  hash.add(static_cast<std::uint8_t>(options.onSurface));
   const Digest128 key = hash.digest();
 
   checkPointshellOptions(options);

@@ -18,6 +18,7 @@
 #include "haptics/voxel/feature_rasterizer.h"
 #include "haptics/voxel/hyperchunk_transform.h"
 #include "haptics/voxel/interior_classifier.h"
+#include "haptics/voxel/surface_planes.h"
 
 namespace voxhap {
 namespace {
@@ -338,9 +339,15 @@ std::uint64_t estimateVoxelizeBytes(double surfaceAreaM2, std::uint64_t triangle
   const double mixedChunks = 3.0 * surfaceChunks;
   const double featureBytes = surfaceChunks * kVoxelsPerChunk;
   const double voxmapBytes = mixedChunks * kVoxelsPerChunk * options.encoding.bytesPerWord();
+  // the planes of the mixed chunks the surface's area makes (the triangle count's share of
+  // surfaceChunks is a bound for tiny triangles, far above what they take)
+  const double planeBytes = options.surfacePlanes ? 3.0 * 1.8 * surfaceAreaM2 / (chunkM * chunkM) *
+                                                        kVoxelsPerChunk * double(sizeof(SurfacePlane))
+                                                  : 0.0;
   const double crossingBytes = 3.0 * 1.2 * surfaceAreaM2 / (s * s) * 8.0;
   const double meshBytes = static_cast<double>(triangles) * 200.0;
-  return static_cast<std::uint64_t>(featureBytes + 2.0 * voxmapBytes + crossingBytes + meshBytes);
+  return static_cast<std::uint64_t>(featureBytes + 2.0 * voxmapBytes + planeBytes + crossingBytes +
+                                    meshBytes);
 }
 
 void checkVoxelizeOptions(const VoxelizeOptions& options) {
@@ -412,7 +419,7 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
         }
         results[h] = voxelizer.build(hyperCoordinates(h, dims), *transform, scratch);
       },
-      stage(0.5, 0.95));
+      stage(0.5, options.surfacePlanes ? 0.7 : 0.95));
 
   // assemble in hyperchunk order, so the arrays do not depend on scheduling
   VoxelizeStats stats;
@@ -463,10 +470,14 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
   chessboardChunkTransform(chunkDistances, dimsChunks, options.threads);
   stats.triangles = triangles;
   for (const MeshFeatures& f : features) stats.polygonsAfterMerge += f.polygonCount;
+  VoxelizedObject out{Voxmap(grid, options.encoding, std::move(hyper), std::move(chunks),
+                             std::move(voxelBytes), std::move(chunkDistances)),
+                      stats};
+  if (options.surfacePlanes)
+    out.voxmap.setSurfacePlanes(
+        computeSurfacePlanes(out.voxmap, meshes, scene, options.threads, stage(0.7, 1.0)));
   if (progress) progress(1.0);
-  return {Voxmap(grid, options.encoding, std::move(hyper), std::move(chunks), std::move(voxelBytes),
-                 std::move(chunkDistances)),
-          stats};
+  return out;
 }
 
 }  // namespace voxhap

@@ -7,6 +7,7 @@
 ///      the field's range, as three separable passes (x, y, z) of a min–max filter
 ///   5. chunks whose voxels are all equal stored as one word
 ///   6. the chunk-level distance field over the whole grid (chunk_distance.h)
+///   7. optionally, the surface planes of the voxels near the surface (surface_planes.h)
 /// Hyperchunks are independent in steps 2 and 4, so they run in parallel; the voxmap
 /// is the same bit for bit whatever the thread count.
 
@@ -25,6 +26,7 @@ struct VoxelizeOptions {
   double voxelSizeM = 0.0;  ///< > 0
   VoxelEncoding encoding = VoxelEncoding::forBits(4);
   bool buildFeatureFields = true;       ///< edge and vertex fields (geometrical awareness); else left far
+  bool surfacePlanes = false;           ///< the voxels' surface planes too (surface_planes.h)
   int threads = 0;                      ///< 0: all cores
   std::uint64_t memoryBudgetBytes = 0;  ///< refuse before allocating beyond this; 0: 3/4 of RAM
 };

@@ -48,6 +48,11 @@ Voxmap Voxmap::paged(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::ui
   return v;
 }
 
+void Voxmap::setSurfacePlanes(std::vector<SurfacePlane> planes) {
+  assert(!isPaged() && planes.size() == mixedChunkCount() * kVoxelsPerChunk);
+  planes_ = std::move(planes);
+}
+
 std::string Voxmap::validate(const VoxelGrid& grid, const VoxelEncoding& encoding,
                              std::span<const std::uint32_t> hyper, std::span<const std::uint32_t> chunks,
                              std::size_t voxelBytesSize, std::size_t chunkDistancesSize) {

@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "haptics/voxel/surface_plane.h"
 #include "haptics/voxel/voxel_encoding.h"
 #include "haptics/voxel/voxel_grid.h"
 
@@ -76,12 +77,7 @@ public:
   /// The packed word of voxel `ijkVoxel`; far (0) outside the grid.
   VoxelWord word(const glm::ivec3& ijkVoxel) const {
     if (!grid_.containsVoxel(ijkVoxel)) return 0;
-    const glm::ivec3 h = ijkVoxel >> (kChunkEdgeLog2 + kHyperEdgeLog2);
-    const std::uint32_t hyperEntry =
-        hyper_[static_cast<std::size_t>(h.x + grid_.dimsHyper.x * (h.y + grid_.dimsHyper.y * h.z))];
-    if (hyperEntry & kUniform) return hyperEntry & ~kUniform;
-    const std::uint32_t chunkEntry =
-        chunkEntry_(std::size_t{hyperEntry} * kChunksPerHyper + chunkInHyper(ijkVoxel >> kChunkEdgeLog2));
+    const std::uint32_t chunkEntry = treeEntry_(ijkVoxel);
     if (chunkEntry & kUniform) return chunkEntry & ~kUniform;
     if (!slotLastUse_.empty()) markUse_(chunkEntry);
     const std::size_t at =
@@ -90,6 +86,21 @@ public:
     std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // padded for this read: each slot, or the end
     return w & wordMask_;
   }
+
+  /// The surface plane of voxel `ijkVoxel` (surface_planes.h), or null: the voxmap has
+  /// none, or the voxel lies outside the grid, in a uniform chunk or beyond the planes' band.
+  const SurfacePlane* surfacePlane(const glm::ivec3& ijkVoxel) const {
+    if (planes_.empty() || !grid_.containsVoxel(ijkVoxel)) return nullptr;
+    const std::uint32_t chunkEntry = treeEntry_(ijkVoxel);
+    if (chunkEntry & kUniform) return nullptr;
+    const SurfacePlane& plane = planes_[std::size_t{chunkEntry} * kVoxelsPerChunk + voxelInChunk(ijkVoxel)];
+    return plane.valid() ? &plane : nullptr;
+  }
+  /// Gives an unpaged voxmap its surface planes: kVoxelsPerChunk per mixed chunk, in the
+  /// order of the chunks' blocks of words (computeSurfacePlanes).
+  void setSurfacePlanes(std::vector<SurfacePlane> planes);
+  bool hasSurfacePlanes() const noexcept { return !planes_.empty(); }
+  std::span<const SurfacePlane> surfacePlanes() const noexcept { return planes_; }
 
   /// One field of voxel `ijkVoxel`.
   std::uint8_t value(const glm::ivec3& ijkVoxel, Field field) const {
@@ -127,7 +138,8 @@ public:
   /// Bytes held by the tree's arrays and the chunk-level field.
   std::size_t memoryBytes() const {
     return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) +
-           voxelBytes_.size() + chunkDistances_.size() + slotLastUse_.size() * sizeof(std::uint32_t);
+           voxelBytes_.size() + chunkDistances_.size() + slotLastUse_.size() * sizeof(std::uint32_t) +
+           planes_.size() * sizeof(SurfacePlane);
   }
 
   /// Bytes after the last block, so that a 4-byte read of the last word stays inside. A
@@ -204,6 +216,15 @@ private:
   /// Words of useClock_: the clock, then padding to a cache line of its own.
   static constexpr std::size_t kClockWords = 64 / sizeof(std::uint32_t);
 
+  /// The tree's entry for the chunk of `ijkVoxel` (inside the grid): kUniform | word, or
+  /// the index of its block.
+  std::uint32_t treeEntry_(const glm::ivec3& ijkVoxel) const {
+    const glm::ivec3 h = ijkVoxel >> (kChunkEdgeLog2 + kHyperEdgeLog2);
+    const std::uint32_t hyperEntry =
+        hyper_[static_cast<std::size_t>(h.x + grid_.dimsHyper.x * (h.y + grid_.dimsHyper.y * h.z))];
+    if (hyperEntry & kUniform) return hyperEntry;
+    return chunkEntry_(std::size_t{hyperEntry} * kChunksPerHyper + chunkInHyper(ijkVoxel >> kChunkEdgeLog2));
+  }
   std::uint32_t chunkEntry_(std::size_t index) const {
     // atomic_ref needs a non-const object; the entry is only read here. seq_cst: the
     // pager's grace period needs this load ordered after the reader's epoch store
@@ -231,6 +252,7 @@ private:
   std::vector<std::uint8_t> chunkDistances_;
   std::vector<std::uint32_t> slotLastUse_;  // paged: per slot, the tick of its last use
   std::vector<std::uint32_t> useClock_;     // paged: [0] the use clock, the rest padding
+  std::vector<SurfacePlane> planes_;        // unpaged, optional: per voxel of each mixed chunk
 };
 
 }  // namespace voxhap

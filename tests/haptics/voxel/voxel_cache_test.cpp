@@ -83,6 +83,14 @@ void expectSameVoxmap(const Voxmap& a, const Voxmap& b) {
         ASSERT_EQ(a.word({x, y, z}), b.word({x, y, z})) << x << " " << y << " " << z;
     }
   }
+  ASSERT_EQ(a.surfacePlanes().size(), b.surfacePlanes().size());
+  for (std::size_t i = 0; i < a.surfacePlanes().size(); ++i) {
+    const SurfacePlane& pa = a.surfacePlanes()[i];
+    const SurfacePlane& pb = b.surfacePlanes()[i];
+    ASSERT_TRUE(pa.distance == pb.distance && pa.outward[0] == pb.outward[0] &&
+                pa.outward[1] == pb.outward[1] && pa.outward[2] == pb.outward[2])
+        << "plane " << i;
+  }
   const glm::ivec3 c = a.grid().dimsChunks();
   for (int z = 0; z < c.z; ++z) {
     for (int y = 0; y < c.y; ++y) {
@@ -184,6 +192,20 @@ TEST_F(VoxelCache, DisabledCacheAlwaysBuildsAndWritesNothing) {
     EXPECT_TRUE(v.cacheFile.empty());
   }
   EXPECT_FALSE(fs::exists(off.directory));
+}
+
+TEST_F(VoxelCache, SurfacePlanesAreKeptAndComeBackTheSame) {
+  VoxelizeOptions planes = voxelOptions();
+  planes.surfacePlanes = true;
+  const CachedVoxelization miss = voxelizeCached(objects_.both, planes, cache());
+  ASSERT_TRUE(miss.voxelized.voxmap.hasSurfacePlanes());
+  const CachedVoxelization hit = voxelizeCached(objects_.both, planes, cache());
+  EXPECT_TRUE(hit.cacheHit);
+  expectSameVoxmap(hit.voxelized.voxmap, miss.voxelized.voxmap);
+  // without planes, another file and none read
+  const CachedVoxelization without = voxelizeCached(objects_.both, voxelOptions(), cache());
+  EXPECT_NE(without.cacheFile, miss.cacheFile);
+  EXPECT_FALSE(without.voxelized.voxmap.hasSurfacePlanes());
 }
 
 TEST_F(VoxelCache, KeyCoversVoxelSizeBitsAwarenessAndGeometry) {

@@ -1,0 +1,94 @@
+#include "haptics/voxel/surface_planes.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "haptics/core/parallel.h"
+#include "haptics/geometry/pseudo_normals.h"
+
+namespace voxhap {
+
+SurfacePlane SurfacePlane::make(double distanceVoxels, const glm::dvec3& outwardUnit) {
+  const double limit = std::numeric_limits<std::int16_t>::max() / kDistanceStepsPerVoxel;
+  SurfacePlane plane;
+  plane.distance = static_cast<std::int16_t>(
+      std::lround(std::clamp(distanceVoxels, -limit, limit) * kDistanceStepsPerVoxel));
+  for (int k = 0; k < 3; ++k)
+    plane.outward[k] =
+        static_cast<std::int16_t>(std::lround(std::clamp(outwardUnit[k], -1.0, 1.0) * kDirectionSteps));
+  return plane;
+}
+
+namespace {
+
+/// Where a mixed chunk sits: its block of words and its chunk coordinates.
+struct MixedChunk {
+  std::uint32_t block;
+  glm::ivec3 ijkChunk;
+};
+
+std::vector<MixedChunk> mixedChunks(const Voxmap& voxmap) {
+  const glm::ivec3 dims = voxmap.grid().dimsHyper;
+  const std::span<const std::uint32_t> hyper = voxmap.hyperEntries();
+  const std::span<const std::uint32_t> chunks = voxmap.chunkEntries();
+  std::vector<MixedChunk> out;
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; ++x) {
+        const std::uint32_t entry = hyper[static_cast<std::size_t>(x + dims.x * (y + dims.y * z))];
+        if (entry & Voxmap::kUniform) continue;
+        for (int c = 0; c < kChunksPerHyper; ++c) {
+          const std::uint32_t chunk =
+              chunks[std::size_t{entry} * kChunksPerHyper + static_cast<std::size_t>(c)];
+          if (chunk & Voxmap::kUniform) continue;
+          const glm::ivec3 inHyper(c & (kHyperEdgeChunks - 1), (c >> kHyperEdgeLog2) & (kHyperEdgeChunks - 1),
+                                   c >> (2 * kHyperEdgeLog2));
+          out.push_back({chunk, glm::ivec3(x, y, z) * kHyperEdgeChunks + inHyper});
+        }
+      }
+  return out;
+}
+
+}  // namespace
+
+std::vector<SurfacePlane> computeSurfacePlanes(const Voxmap& voxmap,
+                                               std::span<const TriangleMesh* const> meshes,
+                                               const EmbreeScene& scene, int threads,
+                                               const ProgressFn& progress) {
+  const std::vector<MixedChunk> mixed = mixedChunks(voxmap);
+  std::vector<SurfacePlane> planes(mixed.size() * kVoxelsPerChunk);
+  const PseudoNormals pseudoNormals(meshes);
+  const VoxelGrid& grid = voxmap.grid();
+  const double s = grid.voxelSizeM;
+  const std::uint8_t outermost = distanceValue(kSurfacePlaneLayers);
+  parallelFor(
+      mixed.size(), threads,
+      [&](std::size_t m) {
+        const glm::ivec3 first = mixed[m].ijkChunk * kChunkEdgeVoxels;
+        SurfacePlane* block = planes.data() + std::size_t{mixed[m].block} * kVoxelsPerChunk;
+        for (int z = 0; z < kChunkEdgeVoxels; ++z)
+          for (int y = 0; y < kChunkEdgeVoxels; ++y)
+            for (int x = 0; x < kChunkEdgeVoxels; ++x) {
+              const glm::ivec3 ijk = first + glm::ivec3(x, y, z);
+              const std::uint8_t value = voxmap.value(ijk, Field::Surface);
+              if (value == kValueFar || value > outermost) continue;
+              const glm::dvec3 c = grid.voxelCentre(ijk);
+              const auto q = scene.closestPoint(c, kSurfacePlaneReachVoxels * s);
+              if (!q) continue;
+              const glm::dvec3 normal = pseudoNormals.normalAt(*q, 1e-9 * s);
+              const bool inside =
+                  value == kValueInterior || (value == kValueFeature && glm::dot(c - q->point, normal) < 0.0);
+              const double onSurfaceM = 1e-6 * s;
+              const glm::dvec3 away = q->distanceM > onSurfaceM ? (c - q->point) / q->distanceM : normal;
+              const glm::dvec3 outward = q->distanceM > onSurfaceM && inside ? -away : away;
+              block[voxelInChunk(ijk)] =
+                  SurfacePlane::make((inside ? -q->distanceM : q->distanceM) / s, outward);
+            }
+      },
+      progress);
+  return planes;
+}
+
+}  // namespace voxhap

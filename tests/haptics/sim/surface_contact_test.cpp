@@ -1,0 +1,136 @@
+// Contact finer than a voxel (SimOptions::surfaceContact): parts rest within half a point
+// spacing of each other, measured on the exact meshes, and never pass into each other.
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "haptics/core/error.h"
+#include "haptics/sim/local_simulation.h"
+#include "support/contact_scenes.h"
+
+namespace voxhap {
+namespace {
+
+const glm::dvec3 kGravity(0.0, 0.0, -9.81);
+constexpr double kVoxelsM[] = {0.001, 0.0007, 0.0005};
+
+/// `moving` free under gravity at voxel size `voxelM`, points half a voxel apart, contact
+/// by surface planes (or the paper's voxel planes when `surface` is false).
+SimModel surfaceModel(const Scene& scene, const std::vector<std::string>& moving, double voxelM,
+                      bool surface = true) {
+  SceneModelOptions options = test::ampleCapacityOptions();
+  options.staticVoxelSizeM = voxelM;
+  options.pointSpacingM = 0.5 * voxelM;
+  options.sim.gravityWorld = kGravity;
+  options.sim.surfaceContact = surface;
+  if (surface) options.sim.forceLayer = kSurfaceContactForceLayer;
+  SimModel model = buildSceneModel(scene, moving, options);
+  for (MovingObjectModel& object : model.objects) object.coupled = false;
+  return model;
+}
+
+/// The exact gap under a convex polyhedron over the plane z = `floorZ` after `frames`
+/// frames at rest, and the least it reached on the way.
+struct Rest {
+  double gapM = 0.0;
+  double lowestM = 1e9;
+  glm::dvec3 velocity{0.0};
+};
+
+Rest settle(const Scene& scene, const SimModel& model, int frames, double floorZ = 0.0) {
+  LocalSimulation sim(model);
+  Rest r;
+  for (int i = 0; i < frames; ++i) {
+    sim.step();
+    r.lowestM =
+        std::min(r.lowestM, test::lowestZ(scene.objects[1], objectPose(model, sim.state, 0)) - floorZ);
+  }
+  r.gapM = test::lowestZ(scene.objects[1], objectPose(model, sim.state, 0)) - floorZ;
+  r.velocity = sim.state.bodies[0].linearVelocityWorld;
+  return r;
+}
+
+Scene onPlate(const std::string& name, const std::function<void(TriangleMesh&)>& append) {
+  Scene scene;
+  scene.objects.push_back(test::plate());
+  scene.objects.push_back(test::meshObject(name, ObjectRole::Dynamic, append));
+  return scene;
+}
+
+TEST(SurfaceContact, ASphereRestsWithinAQuarterVoxelOfThePlateAndNeverSinksIntoIt) {
+  const Scene scene = onPlate(
+      "ball", [](TriangleMesh& m) { appendGeodesicSphere(m, test::at(0.0001, -0.0002, 0.011), 0.01, 4); });
+  for (const double voxelM : kVoxelsM) {
+    const Rest r = settle(scene, surfaceModel(scene, {"ball"}, voxelM), 1500);
+    EXPECT_GT(r.lowestM, 0.0) << voxelM;
+    EXPECT_LE(r.gapM, 0.25 * voxelM) << voxelM;
+    EXPECT_LT(glm::length(r.velocity), 1e-3) << voxelM;
+    std::printf("sphere at %.2f mm voxels: rest gap %.3f voxel, least %.3f voxel\n", voxelM * 1e3,
+                r.gapM / voxelM, r.lowestM / voxelM);
+  }
+}
+
+TEST(SurfaceContact, ABoxRestsFlatWithinAQuarterVoxelWhereTheVoxelPlanesHoldItNearTwoVoxelsUp) {
+  const Scene scene = onPlate("box", [](TriangleMesh& m) {
+    appendBox(m, test::at(0.0003, -0.0007, 0.0058), glm::dvec3(0.01, 0.01, 0.005));
+  });
+  for (const double voxelM : kVoxelsM) {
+    const Rest surface = settle(scene, surfaceModel(scene, {"box"}, voxelM), 1500);
+    const Rest paper = settle(scene, surfaceModel(scene, {"box"}, voxelM, false), 1500);
+    EXPECT_GT(surface.lowestM, 0.0) << voxelM;
+    EXPECT_LE(surface.gapM, 0.25 * voxelM) << voxelM;
+    EXPECT_GT(paper.gapM, 1.0 * voxelM) << voxelM;
+    std::printf("box at %.2f mm voxels: rest gap %.3f voxel (voxel planes %.3f)\n", voxelM * 1e3,
+                surface.gapM / voxelM, paper.gapM / voxelM);
+  }
+}
+
+// DISABLED (known failure): the upper rod's edge meets the lower's between its points
+// (half a point spacing from the nearest, or more where the points on an edge bunch), so
+// the edges cross by 0.07-0.11 mm before a point holds them, then creep on by about
+// 0.1 µm a frame and pass through within 1,500 frames at every voxel size here. Points
+// alone cannot see an edge of the other part between them: the other part's pointshell
+// against this one's voxels would (for a moving pair), a static edge has none.
+TEST(SurfaceContact, DISABLED_CrossedRodsRestEdgeOnEdgeWithoutCrossing) {
+  // two square rods turned 45° about their axes, an edge of each facing the other: the
+  // upper one falls onto the lower, whose top edge is at `edge`
+  const double half = 0.002;
+  const double edge = half * std::sqrt(2.0);
+  for (const double voxelM : kVoxelsM) {
+    Scene scene;
+    scene.objects.push_back(test::meshObject("lower", ObjectRole::Static, [&](TriangleMesh& m) {
+      appendBox(m, glm::rotate(test::at(0.0, 0.00013, 0.0), M_PI / 4, glm::dvec3(1.0, 0.0, 0.0)),
+                glm::dvec3(0.03, half, half));
+    }));
+    scene.objects.push_back(test::meshObject("upper", ObjectRole::Dynamic, [&](TriangleMesh& m) {
+      appendBox(m,
+                glm::rotate(test::at(0.00021, 0.0, 2.0 * edge + 0.002), M_PI / 4, glm::dvec3(0.0, 1.0, 0.0)),
+                glm::dvec3(half, 0.03, half));
+    }));
+    const Rest r = settle(scene, surfaceModel(scene, {"upper"}, voxelM), 1500, edge);
+    EXPECT_GT(r.lowestM, 0.0) << "the edges crossed at " << voxelM;
+    EXPECT_LE(r.gapM, 0.25 * voxelM) << voxelM;
+    std::printf("crossed rods at %.2f mm voxels: rest gap %.3f voxel, least %.3f voxel\n", voxelM * 1e3,
+                r.gapM / voxelM, r.lowestM / voxelM);
+  }
+}
+
+TEST(SurfaceContact, PointsMoreThanTwoVoxelsApartAreRefused) {
+  const Scene scene =
+      onPlate("ball", [](TriangleMesh& m) { appendGeodesicSphere(m, test::at(0, 0, 0.011), 0.01, 3); });
+  SceneModelOptions options = test::ampleCapacityOptions();
+  options.staticVoxelSizeM = 0.001;
+  options.pointSpacingM = 0.0025;
+  options.sim.surfaceContact = true;
+  options.sim.forceLayer = kSurfaceContactForceLayer;
+  EXPECT_THROW(buildSceneModel(scene, {"ball"}, options), Error);
+  options.pointSpacingM = 0.001;
+  options.sim.forceLayer = distanceValue(0);
+  EXPECT_THROW(buildSceneModel(scene, {"ball"}, options), Error);
+}
+
+}  // namespace
+}  // namespace voxhap
