@@ -45,9 +45,9 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
         break;
       case SimOption::SurfaceContact:
         command.add_flag("--surface-contact", o.surfaceContact,
-                         "contact finer than a voxel: parts push apart once closer than half the point "
-                         "spacing, measured from exact surface planes kept with the voxels (off: the "
-                         "paper's voxel planes, parts resting 1.6-1.9 voxels apart)");
+                         "contact finer than a voxel: parts rest about 0.4 point spacings apart, by "
+                         "exact surface planes kept with the voxels (off: the paper's voxel planes, "
+                         "parts resting 1.6-1.9 voxels apart)");
         break;
       case SimOption::Capacity:
         addParsedOption(command, "--capacity", "N", "point tests per frame (default: measured online)",

@@ -177,9 +177,10 @@ void addDemoCommand(CommandTree& tree) {
   CLI::App& command = tree.add(tree.root(), "demo", std::move(demo),
                                [args](const CommandContext& c) { return runDemo(*args, c); });
   SimOptions& sim = args->extraction.sim;
-  addSimOptions(command, sim,
-                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::Capacity, SimOption::VoxelMemory,
-                 SimOption::BruteForce, SimOption::DeviceProfile, SimOption::Duration});
+  addSimOptions(
+      command, sim,
+      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::SurfaceContact, SimOption::Capacity,
+       SimOption::VoxelMemory, SimOption::BruteForce, SimOption::DeviceProfile, SimOption::Duration});
   command.get_option("--voxel-size")->description("voxel size of the static gear (default 2.5mm)");
   command.get_option("--point-spacing")->description("point spacing of the actuator (default 1mm)");
   command.get_option("--duration")->description("simulated time (default: the whole script, 18 s)");
