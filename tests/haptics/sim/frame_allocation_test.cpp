@@ -10,7 +10,8 @@
 namespace voxhap {
 namespace {
 
-TEST(FrameAllocation, SteppingTwoCoupledObjectsInContactAllocatesNothing) {
+/// Two boxes on a plate pushed into each other and onto it by their handles, 200 frames.
+void expectTwoBoxesAllocateNothing(bool surfaceContact) {
   Scene scene;
   scene.objects.push_back(test::plate());
   for (int i = 0; i < 2; ++i) {
@@ -22,7 +23,13 @@ TEST(FrameAllocation, SteppingTwoCoupledObjectsInContactAllocatesNothing) {
   options.staticVoxelSizeM = 0.0005;
   options.pointSpacingM = 0.0005;
   options.sim.gravityWorld = glm::dvec3(0.0, 0.0, -9.81);
+  if (surfaceContact) {
+    options.pointSpacingM = 0.00025;
+    options.sim.surfaceContact = true;
+    options.sim.forceLayer = kSurfaceContactForceLayer;
+  }
   const SimModel model = buildSceneModel(scene, {"a", "b"}, options);
+  ASSERT_EQ(model.pairs.front().params.surfaceContactM > 0.0, surfaceContact);
   const MotionScript script({{0.0, Pose{}}, {0.2, Pose{glm::dvec3(0.002, 0.0, -0.001), identityQuat()}}},
                             "push");
   ScriptedDevice da(script);
@@ -33,6 +40,14 @@ TEST(FrameAllocation, SteppingTwoCoupledObjectsInContactAllocatesNothing) {
   for (int i = 0; i < 200; ++i) sim.stepWithDevices(devices);
   EXPECT_EQ(allocations.count(), 0u);
   EXPECT_GT(sim.object(0).contacts + sim.object(1).contacts, 0u) << "the frames tested no contact";
+}
+
+TEST(FrameAllocation, SteppingTwoCoupledObjectsInContactAllocatesNothing) {
+  expectTwoBoxesAllocateNothing(false);
+}
+
+TEST(FrameAllocation, SteppingThemWithSurfacePlanesAllocatesNothing) {
+  expectTwoBoxesAllocateNothing(true);
 }
 
 TEST(FrameAllocation, TurningTheSeatedBallWithItsCapacityMeasuredOnlineAllocatesNothing) {
