@@ -92,7 +92,6 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
   for (const PointContact& c : contacts) {
     const glm::dvec3 p =
         shellToVoxmapRotation * glm::dvec3(shell.positionsLocal[c.point]) + shellToVoxmap.position;
-    const glm::dvec3 n = shellToVoxmapRotation * glm::dvec3(shell.normalsLocal[c.point]);
     const bool beforeContact = c.value > params.forceLayer;
     const SurfacePlane* plane = planes ? voxmap.surfacePlane(c.ijkVoxel) : nullptr;
     // no plane: deep inside (the voxel's tangent plane stands in), or too far out to push
@@ -106,6 +105,7 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
           plane->distanceVoxels() * s + glm::dot(p - grid.voxelCentre(c.ijkVoxel), outward);
       if (!beforeContact) depth = params.surfaceContactM - distanceM;
     } else {
+      const glm::dvec3 n = shellToVoxmapRotation * glm::dvec3(shell.normalsLocal[c.point]);
       const PointFeature feature = shell.features[c.point];
       pushDirection = pushDirectionOf(voxmap, c, feature, params.geometricalAwareness,
                                       shifts[static_cast<std::size_t>(feature)], n, out);

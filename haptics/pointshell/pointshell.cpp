@@ -97,7 +97,7 @@ HyperchunkBlocks<std::uint8_t> freeLayerBits(std::span<const TriangleMesh* const
         if (voxmap.chunkDistance({cx, cy, cz}) != 0) continue;
         for (int i = 0; i < kVoxelsPerChunk; ++i) {
           const glm::ivec3 v =
-              glm::ivec3(cx, cy, cz) * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
+              glm::ivec3(cx, cy, cz) * kChunkEdgeVoxels + cellOfIndex(static_cast<std::uint32_t>(i));
           if (voxmap.value(v, Field::Surface) == wanted)
             bits.findOrCreate({cx, cy, cz}, 0)[static_cast<std::size_t>(i)] = kSurfaceBit;
         }
@@ -172,9 +172,7 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
       for (int hx = 0; hx < dims.x; ++hx) {
         if (!bits.hyperHasBlocks({hx, hy, hz})) continue;
         for (std::uint32_t c = 0; c < kChunksPerHyper; ++c) {
-          const glm::ivec3 ijkChunk =
-              glm::ivec3(hx, hy, hz) * kHyperEdgeChunks +
-              glm::ivec3(static_cast<int>(c & 7u), static_cast<int>((c >> 3) & 7u), static_cast<int>(c >> 6));
+          const glm::ivec3 ijkChunk = glm::ivec3(hx, hy, hz) * kHyperEdgeChunks + cellOfIndex(c);
           const auto* block = bits.find(ijkChunk);
           if (!block) continue;
           const auto points = static_cast<std::uint32_t>(std::count_if(
@@ -209,7 +207,7 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
           const std::uint8_t b = chunks[c].bits[i];
           if (!(b & kSurfaceBit)) continue;
           const glm::ivec3 v =
-              chunks[c].ijkChunk * kChunkEdgeVoxels + glm::ivec3(i & 7, (i >> 3) & 7, i >> 6);
+              chunks[c].ijkChunk * kChunkEdgeVoxels + cellOfIndex(static_cast<std::uint32_t>(i));
           const glm::dvec3 centre = grid.voxelCentre(v);
           PointFeature feature = (b & kVertexBit) ? PointFeature::Vertex
                                  : (b & kEdgeBit) ? PointFeature::Edge

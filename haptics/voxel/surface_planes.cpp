@@ -39,13 +39,10 @@ std::vector<MixedChunk> mixedChunks(const Voxmap& voxmap) {
       for (int x = 0; x < dims.x; ++x) {
         const std::uint32_t entry = hyper[static_cast<std::size_t>(x + dims.x * (y + dims.y * z))];
         if (entry & Voxmap::kUniform) continue;
-        for (int c = 0; c < kChunksPerHyper; ++c) {
-          const std::uint32_t chunk =
-              chunks[std::size_t{entry} * kChunksPerHyper + static_cast<std::size_t>(c)];
+        for (std::uint32_t c = 0; c < kChunksPerHyper; ++c) {
+          const std::uint32_t chunk = chunks[std::size_t{entry} * kChunksPerHyper + c];
           if (chunk & Voxmap::kUniform) continue;
-          const glm::ivec3 inHyper(c & (kHyperEdgeChunks - 1), (c >> kHyperEdgeLog2) & (kHyperEdgeChunks - 1),
-                                   c >> (2 * kHyperEdgeLog2));
-          out.push_back({chunk, glm::ivec3(x, y, z) * kHyperEdgeChunks + inHyper});
+          out.push_back({chunk, glm::ivec3(x, y, z) * kHyperEdgeChunks + cellOfIndex(c)});
         }
       }
   return out;
@@ -68,24 +65,21 @@ std::vector<SurfacePlane> computeSurfacePlanes(const Voxmap& voxmap,
       [&](std::size_t m) {
         const glm::ivec3 first = mixed[m].ijkChunk * kChunkEdgeVoxels;
         SurfacePlane* block = planes.data() + std::size_t{mixed[m].block} * kVoxelsPerChunk;
-        for (int z = 0; z < kChunkEdgeVoxels; ++z)
-          for (int y = 0; y < kChunkEdgeVoxels; ++y)
-            for (int x = 0; x < kChunkEdgeVoxels; ++x) {
-              const glm::ivec3 ijk = first + glm::ivec3(x, y, z);
-              const std::uint8_t value = voxmap.value(ijk, Field::Surface);
-              if (value == kValueFar || value > outermost) continue;
-              const glm::dvec3 c = grid.voxelCentre(ijk);
-              const auto q = scene.closestPoint(c, kSurfacePlaneReachVoxels * s);
-              if (!q) continue;
-              const glm::dvec3 normal = pseudoNormals.normalAt(*q, 1e-9 * s);
-              const bool inside =
-                  value == kValueInterior || (value == kValueFeature && glm::dot(c - q->point, normal) < 0.0);
-              const double onSurfaceM = 1e-6 * s;
-              const glm::dvec3 away = q->distanceM > onSurfaceM ? (c - q->point) / q->distanceM : normal;
-              const glm::dvec3 outward = q->distanceM > onSurfaceM && inside ? -away : away;
-              block[voxelInChunk(ijk)] =
-                  SurfacePlane::make((inside ? -q->distanceM : q->distanceM) / s, outward);
-            }
+        for (std::uint32_t i = 0; i < kVoxelsPerChunk; ++i) {
+          const glm::ivec3 ijk = first + cellOfIndex(i);
+          const std::uint8_t value = voxmap.value(ijk, Field::Surface);
+          if (value == kValueFar || value > outermost) continue;
+          const glm::dvec3 c = grid.voxelCentre(ijk);
+          const auto q = scene.closestPoint(c, kSurfacePlaneReachVoxels * s);
+          if (!q) continue;
+          const glm::dvec3 normal = pseudoNormals.normalAt(*q, 1e-9 * s);
+          const bool inside =
+              value == kValueInterior || (value == kValueFeature && glm::dot(c - q->point, normal) < 0.0);
+          const double onSurfaceM = 1e-6 * s;
+          const glm::dvec3 away = q->distanceM > onSurfaceM ? (c - q->point) / q->distanceM : normal;
+          const glm::dvec3 outward = q->distanceM > onSurfaceM && inside ? -away : away;
+          block[i] = SurfacePlane::make((inside ? -q->distanceM : q->distanceM) / s, outward);
+        }
       },
       progress);
   return planes;

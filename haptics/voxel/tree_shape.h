@@ -30,4 +30,13 @@ inline constexpr std::uint32_t chunkInHyper(const glm::ivec3& ijkChunk) {
                                     ((ijkChunk.z & m) << (2 * kHyperEdgeLog2)));
 }
 
+/// (x, y, z) of index `i` in a block of 8³ (x fastest): the inverse of voxelInChunk and
+/// chunkInHyper.
+inline constexpr glm::ivec3 cellOfIndex(std::uint32_t i) {
+  constexpr std::uint32_t m = kChunkEdgeVoxels - 1;
+  static_assert(kChunkEdgeVoxels == kHyperEdgeChunks);
+  return {static_cast<int>(i & m), static_cast<int>((i >> kChunkEdgeLog2) & m),
+          static_cast<int>(i >> (2 * kChunkEdgeLog2))};
+}
+
 }  // namespace voxhap
