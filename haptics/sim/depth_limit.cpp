@@ -1,7 +1,9 @@
 #include "haptics/sim/depth_limit.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -19,6 +21,8 @@ constexpr double kToleranceOfLimit = 1e-6;
 constexpr double kResidualOfLimit = 0.02;
 /// Rounds of giving passing rows limits of their own.
 constexpr int kRowRounds = 4;
+/// Rows given limits of their own in one round: the furthest past.
+constexpr std::size_t kRowsPerRound = kRowLimits / kRowRounds;
 
 using Delta = DepthLimitScratch::Delta;
 using Limit = DepthLimitScratch::Limit;
@@ -142,16 +146,48 @@ std::uint32_t setUp(std::span<const MovingObjectModel> objects, std::span<const 
   return binding;
 }
 
-/// Gives a limit of its own to each surface-plane row that the step as solved so far would
-/// take past its pair's limit (room allowing, each row once), after the first `count`
-/// limits; returns how many.
+/// How far the step as solved so far would take `row` past its own limit (target
+/// max(L − d, 0)), m; ≤ 0 when it would not.
+double rowExcessM(const DepthRow& row, std::span<const Delta> deltas,
+                  std::span<const RigidBodyState> before) {
+  const glm::dvec3& u = row.intoVoxmapWorld;
+  const auto a = static_cast<std::size_t>(row.shellObject);
+  double gain = glm::dot(u, deltas[a].linear) +
+                glm::dot(glm::cross(row.pointWorld - before[a].comWorld, u), deltas[a].angular);
+  if (row.voxmapObject >= 0) {
+    const auto b = static_cast<std::size_t>(row.voxmapObject);
+    gain -= glm::dot(u, deltas[b].linear) +
+            glm::dot(glm::cross(row.pointWorld - before[b].comWorld, u), deltas[b].angular);
+  }
+  return gain - std::max(row.limitM - row.depthM, 0.0);
+}
+
+/// Gives a limit of its own to each of the (at most kRowsPerRound) surface-plane rows that
+/// the step as solved so far takes furthest past their limits, beyond the tolerance (room
+/// allowing, each row once), after the first `count` limits; returns how many.
 std::size_t limitPassingRows(DepthLimitScratch& s, std::size_t count, std::size_t rowCount,
                              std::span<const RigidBodyState> before) {
-  std::size_t added = 0;
-  for (std::size_t r = 0; r < rowCount && count + added < s.limits.size(); ++r) {
-    DepthRow& row = s.rows[r];
+  // the worst rows so far, by excess as a share of their limits, worst first (ties: lower index)
+  std::array<std::pair<double, std::size_t>, kRowsPerRound> worst{};
+  std::size_t found = 0;
+  for (std::size_t r = 0; r < rowCount; ++r) {
+    const DepthRow& row = s.rows[r];
     if (!row.surfacePlane || row.limited) continue;
-    Limit& l = s.limits[count + added];
+    const double share = rowExcessM(row, s.deltas, before) / row.limitM;
+    if (!(share > kToleranceOfLimit)) continue;
+    if (found == worst.size() && share <= worst.back().first) continue;
+    std::size_t at = std::min(found, worst.size() - 1);
+    while (at > 0 && worst[at - 1].first < share) {
+      worst[at] = worst[at - 1];
+      --at;
+    }
+    worst[at] = {share, r};
+    found = std::min(found + 1, worst.size());
+  }
+  const std::size_t added = std::min(found, s.limits.size() - count);
+  for (std::size_t k = 0; k < added; ++k) {
+    DepthRow& row = s.rows[worst[k].second];
+    Limit& l = s.limits[count + k];
     l = Limit{};
     l.bodyA = row.shellObject;
     l.bodyB = row.voxmapObject;
@@ -159,11 +195,24 @@ std::size_t limitPassingRows(DepthLimitScratch& s, std::size_t count, std::size_
     addRow(l, row, 1.0, before);
     normalise(l);
     setMasses(l, s.deltas);
-    if (gainOf(l, s.deltas) <= l.targetM + kToleranceOfLimit * l.limitM) continue;
     row.limited = true;
-    ++added;
   }
   return added;
+}
+
+/// The scale of the whole step that keeps every surface-plane row within the last pass's
+/// residual of its own limit.
+double surfaceRowScale(const DepthLimitScratch& s, std::size_t rowCount,
+                       std::span<const RigidBodyState> before) {
+  double scale = 1.0;
+  for (std::size_t r = 0; r < rowCount; ++r) {
+    const DepthRow& row = s.rows[r];
+    if (!row.surfacePlane) continue;
+    const double allowed = std::max(row.limitM - row.depthM, 0.0) + kResidualOfLimit * row.limitM;
+    const double gain = rowExcessM(row, s.deltas, before) + std::max(row.limitM - row.depthM, 0.0);
+    if (gain > allowed) scale = std::min(scale, allowed / gain);
+  }
+  return scale;
 }
 
 /// The sweeps, then the scale of the whole step that the last pass needs.
@@ -200,8 +249,8 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
   if (rowCount == 0) return frame;
   frame.binding = setUp(objects, before, after, s, count, false);
   double scale = frame.binding == 0 ? 1.0 : solve(s, count);
-  // a pair's mean may hold while some of its points pass it: those measured exactly get
-  // limits of their own, a few rounds, as long as there is room
+  // a pair's mean may hold while some of its points pass it: those measured exactly and
+  // furthest past get limits of their own, a few rounds
   for (int round = 0; round < kRowRounds; ++round) {
     const std::size_t added = limitPassingRows(s, count, rowCount, before);
     if (added == 0) break;
@@ -209,13 +258,15 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
     frame.rowLimits += static_cast<std::uint32_t>(added);
     scale = solve(s, count);
   }
-  if (frame.binding == 0 && frame.rowLimits == 0) return frame;
+  // the rows still past their own limits beyond the residual (more of them than there is room for)
+  scale = std::min(scale, surfaceRowScale(s, rowCount, before));
+  if (frame.binding == 0 && frame.rowLimits == 0 && scale == 1.0) return frame;
   if (scale < 1.0 &&
       std::any_of(s.deltas.begin(), s.deltas.end(), [](const Delta& d) { return d.kinematic; })) {
     // a local part trapped against a remote one: the remote one yields too
     for (Delta& d : s.deltas) d.yielding = d.kinematic;
     setUp(objects, before, after, s, count, true);
-    scale = solve(s, count);
+    scale = std::min(solve(s, count), surfaceRowScale(s, rowCount, before));
   }
   frame.scale = scale;
 

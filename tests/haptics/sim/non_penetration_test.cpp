@@ -3,14 +3,17 @@
 // edge, levered over an edge, a peg pulled sideways in its hole, the seated ball pressed
 // into its socket, two moving parts pressed together. Each at three voxel sizes, checked
 // against exact geometry: Embree probes a quarter voxel apart over both surfaces, both
-// directions (app/exact_checks.h), every few frames and at the end. The bound is
-// a tenth of the static voxel. Every frame runs with floating-point traps on. Each case prints its figures
-// (exact depth, force felt at the handle, frames to rest) for the closing notes.
+// directions (app/exact_checks.h), every few frames and at the end. The bound is a tenth
+// of the static voxel. Each case runs with the paper's voxel planes and with surface planes
+// (contact finer than a voxel). Every frame runs with floating-point traps on. Each case
+// prints its figures (exact depth, force felt at the handle, frames to rest) for the
+// closing notes.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <numbers>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -60,6 +63,10 @@ struct Case {
   /// Per moving object: a remote peer's (type-1), moved as a kinematic body to its
   /// handle's pose (KinematicInput) instead of being coupled to it; empty: none.
   std::vector<bool> remote = {};
+  /// Exact checks every this many frames, and after the last.
+  int checkEvery = kCheckEvery;
+  /// Contact by surface planes (SimOptions::surfaceContact) instead of the paper's voxel planes.
+  bool surfaceContact = false;
 };
 
 struct Outcome {
@@ -85,6 +92,10 @@ Outcome run(const std::string& name, const Case& c) {
   options.staticVoxelSizeM = c.voxelM;
   options.pointSpacingM = c.voxelM;
   options.pointDisplacementM = c.pointOffsetM;
+  if (c.surfaceContact) {
+    options.sim.surfaceContact = true;
+    options.sim.forceLayer = kSurfaceContactForceLayer;
+  }
   const SimModel model = buildSceneModel(c.scene, c.moving, options);
   LocalSimulation sim(model);
   SimState& state = sim.state;
@@ -123,7 +134,7 @@ Outcome run(const std::string& name, const Case& c) {
       const test::FloatingPointTraps traps;
       sim.step(handles, {}, kinematic);
     }
-    if (frame % kCheckEvery == 0 || frame + 1 == c.frames) {
+    if (frame % c.checkEvery == 0 || frame + 1 == c.frames) {
       const double depthM = deepest(where);
       if (depthM - loadedM > out.depthM) {
         out.depthM = depthM - loadedM;
@@ -141,19 +152,41 @@ Outcome run(const std::string& name, const Case& c) {
   }
   out.limitedFrames = sim.workspace.counters.depthLimitedFrames;
   std::printf(
-      "[ figures  ] %-40s voxel %.2f mm: exact depth %.4f mm (%.3f voxel)%s%s, felt %.2f N, rest at frame "
+      "[ figures  ] %-40s %-7s voxel %.2f mm: exact depth %.4f mm (%.3f voxel)%s%s, felt %.2f N, rest at "
+      "frame "
       "%d, "
       "limited %llu of %d frames\n",
-      name.c_str(), c.voxelM * 1e3, out.depthM * 1e3, out.depthM / c.voxelM, out.where.empty() ? "" : ", ",
-      out.where.c_str(), out.feltForceN, out.restFrame, static_cast<unsigned long long>(out.limitedFrames),
-      c.frames);
+      name.c_str(), c.surfaceContact ? "surface" : "paper", c.voxelM * 1e3, out.depthM * 1e3,
+      out.depthM / c.voxelM, out.where.empty() ? "" : ", ", out.where.c_str(), out.feltForceN, out.restFrame,
+      static_cast<unsigned long long>(out.limitedFrames), c.frames);
   return out;
 }
 
-void expectWithinBound(const std::string& name, const Case& c) {
-  const Outcome out = run(name, c);
-  EXPECT_LE(out.depthM, kBoundVoxels * c.voxelM) << name << " at " << c.voxelM * 1e3 << " mm: " << out.where;
+/// How contacts are measured: the paper's voxel planes, or surface planes (finer than a voxel).
+enum class Contact { Paper, Surface };
+
+const char* nameOf(Contact c) {
+  return c == Contact::Surface ? "Surface" : "Paper";
 }
+void PrintTo(Contact c, std::ostream* os) {
+  *os << nameOf(c);
+}
+
+/// Every case runs with either contact.
+class NonPenetration : public testing::TestWithParam<Contact> {
+protected:
+  bool surface() const { return GetParam() == Contact::Surface; }
+
+  void expectWithinBound(const std::string& name, Case c) const {
+    c.surfaceContact = surface();
+    const Outcome out = run(name, c);
+    EXPECT_LE(out.depthM, kBoundVoxels * c.voxelM)
+        << name << " at " << c.voxelM * 1e3 << " mm: " << out.where;
+  }
+};
+
+INSTANTIATE_TEST_SUITE_P(Contact, NonPenetration, testing::Values(Contact::Paper, Contact::Surface),
+                         [](const testing::TestParamInfo<Contact>& info) { return nameOf(info.param); });
 
 // ---------------------------------------------------------------------------------------
 // scenes
@@ -173,7 +206,7 @@ Scene boxOverPlate(double thickM) {
 
 constexpr double kVoxelsM[] = {0.001, 0.0007, 0.0005};
 
-TEST(NonPenetration, BoxPressedIntoAPlateByTwoToFiveHundredMillimetres) {
+TEST_P(NonPenetration, BoxPressedIntoAPlateByTwoToFiveHundredMillimetres) {
   for (const double voxelM : kVoxelsM) {
     for (const double pressM : {0.002, 0.01, 0.05, 0.5}) {
       Case c{boxOverPlate(0.01), {"box"}, {ramp(moved(0.0, 0.0, -0.0025 - pressM), 0.3)}, voxelM};
@@ -182,7 +215,7 @@ TEST(NonPenetration, BoxPressedIntoAPlateByTwoToFiveHundredMillimetres) {
   }
 }
 
-TEST(NonPenetration, BoxTiltedTenDegreesWhilePressed) {
+TEST_P(NonPenetration, BoxTiltedTenDegreesWhilePressed) {
   for (const double voxelM : kVoxelsM) {
     for (const double pressM : {0.002, 0.05}) {
       Case c{boxOverPlate(0.01),
@@ -194,7 +227,7 @@ TEST(NonPenetration, BoxTiltedTenDegreesWhilePressed) {
   }
 }
 
-TEST(NonPenetration, BoxDrivenFiftyMillimetresUnderTheFaceOfATwentyMillimetrePlateStaysOnIt) {
+TEST_P(NonPenetration, BoxDrivenFiftyMillimetresUnderTheFaceOfATwentyMillimetrePlateStaysOnIt) {
   for (const double voxelM : kVoxelsM) {
     Case c{boxOverPlate(0.02), {"box"}, {ramp(moved(0.0, 0.0, -0.0525), 0.3)}, voxelM};
     expectWithinBound("box driven 50 mm under a 20 mm plate", c);
@@ -214,7 +247,7 @@ Scene boxBesideWall() {
   return scene;
 }
 
-TEST(NonPenetration, BoxDraggedAlongAWallWhilePressedIntoIt) {
+TEST_P(NonPenetration, BoxDraggedAlongAWallWhilePressedIntoIt) {
   for (const double voxelM : kVoxelsM) {
     const HandleFn drag = [](double t) {
       // 10 mm into the wall in 0.2 s, then 30 mm along it at 0.1 m/s, twisting 10°
@@ -250,19 +283,21 @@ Case twistedBar(double voxelM) {
   return Case{barOverEdge(glm::dvec3(0.03, 0.003, 0.003), 0.0025), {"bar"}, {twist}, voxelM, 0.0, 800};
 }
 
-TEST(NonPenetration, BarTwistedAgainstAnEdge) {
+TEST_P(NonPenetration, BarTwistedAgainstAnEdge) {
   for (const double voxelM : {0.001, 0.0007})
     expectWithinBound("bar twisted against an edge", twistedBar(voxelM));
 }
 
-// DISABLED (known failure): at 0.5 mm the bar's edge cuts 0.65 mm (1.3 voxels) into the
-// block at frame 636, while it turns over the block's edge: an edge–edge contact, whose
-// rows are averaged with the pair's others (depth_limit.h), sinks while the rest rise.
-TEST(NonPenetration, DISABLED_BarTwistedAgainstAnEdgeAtHalfAMillimetre) {
+// Surface planes only. With voxel planes (known failure) the bar's edge cuts 0.65 mm (1.3
+// voxels) into the block at frame 636, while it turns over the block's edge: an edge–edge
+// contact, whose rows are averaged with the pair's others (depth_limit.h), sinks while the
+// rest rise. Surface planes hold such rows with limits of their own.
+TEST_P(NonPenetration, BarTwistedAgainstAnEdgeAtHalfAMillimetre) {
+  if (!surface()) GTEST_SKIP() << "known failure with voxel planes: 1.3 voxels deep at frame 636";
   expectWithinBound("bar twisted against an edge", twistedBar(0.0005));
 }
 
-TEST(NonPenetration, LongThinRodLeveredOverAnEdge) {
+TEST_P(NonPenetration, LongThinRodLeveredOverAnEdge) {
   for (const double voxelM : kVoxelsM) {
     // a 120 mm rod across the edge, its free end pushed down 40 mm: the edge is the fulcrum
     const HandleFn lever = [](double t) {
@@ -289,7 +324,7 @@ Scene pegAndBlock(double clearanceM, double liftM, bool overHole) {
   return scene;
 }
 
-TEST(NonPenetration, PegRestingOnAFaceWithItsHandleBelowIt) {
+TEST_P(NonPenetration, PegRestingOnAFaceWithItsHandleBelowIt) {
   for (const double voxelM : {0.0005, 0.00035, 0.00025}) {
     // off the hole, on the top face, handle 2 mm under the face
     Case c{
@@ -298,7 +333,7 @@ TEST(NonPenetration, PegRestingOnAFaceWithItsHandleBelowIt) {
   }
 }
 
-TEST(NonPenetration, PegPulledSidewaysWhileSlidingInItsHole) {
+TEST_P(NonPenetration, PegPulledSidewaysWhileSlidingInItsHole) {
   for (const double voxelM : {0.0001, 0.00007, 0.00005}) {
     // clearance of five voxels, so that the force layer lets the peg in; the peg starts
     // 2 mm into the hole and slides 3 mm deeper while its handle pulls 2 mm sideways
@@ -311,18 +346,21 @@ TEST(NonPenetration, PegPulledSidewaysWhileSlidingInItsHole) {
   }
 }
 
-// DISABLED (known failure, and 10 minutes of exact probes in Release): the seated ball
-// (points half a voxel inward, a press fit) pressed 0.5 mm and 5 mm down sinks past its
-// loaded depth by 0.090 and 0.257 mm at 0.7 mm voxels (0.13 and 0.37 voxel), 0.052 and
-// 0.096 mm at 0.5 mm (0.10 and 0.19), 0.016 and 0.013 mm at 0.35 mm (0.045 and 0.038,
-// within the bound). The pair's one depth limit holds the mean of thousands of contacts,
-// not the deepest (depth_limit.h says why not one per point).
-TEST(NonPenetration, DISABLED_SeatedBallPressedIntoItsSocket) {
+// Surface planes only (points on the exact surface, no offset); exact checks every 10
+// frames, which take most of its minutes. With voxel planes (known failure, 10 minutes of
+// exact probes every 4 frames in Release) the seated ball (points half a voxel inward, a
+// press fit) pressed 0.5 mm and 5 mm down sinks past its loaded depth by 0.090 and 0.257 mm
+// at 0.7 mm voxels (0.13 and 0.37 voxel), 0.052 and 0.096 mm at 0.5 mm (0.10 and 0.19),
+// 0.016 and 0.013 mm at 0.35 mm (0.045 and 0.038, within the bound): the pair's one depth
+// limit holds the mean of thousands of contacts, not the deepest (depth_limit.h says why
+// not one per point with voxel planes).
+TEST_P(NonPenetration, SeatedBallPressedIntoItsSocket) {
+  if (!surface()) GTEST_SKIP() << "known failure with voxel planes: up to 0.37 voxel past its loaded depth";
   for (const double voxelM : {0.0007, 0.0005, 0.00035}) {
     for (const double pressM : {0.0005, 0.005}) {
-      Case c{makeBallAndSocket(), {"ball"}, {ramp(moved(0.0, 0.0, -pressM), 0.1)}, voxelM,
-             -0.5 * voxelM,       300};
+      Case c{makeBallAndSocket(), {"ball"}, {ramp(moved(0.0, 0.0, -pressM), 0.1)}, voxelM, 0.0, 300};
       c.fromLoadedDepth = true;
+      c.checkEvery = std::max(kCheckEvery, 10);
       expectWithinBound("seated ball pressed " + std::to_string(pressM * 1e3).substr(0, 3) + " mm", c);
     }
   }
@@ -341,7 +379,7 @@ Scene twoBoxes() {
   return scene;
 }
 
-TEST(NonPenetration, TwoMovingPartsPressedTogetherByTheirHandles) {
+TEST_P(NonPenetration, TwoMovingPartsPressedTogetherByTheirHandles) {
   for (const double voxelM : kVoxelsM) {
     Case c{twoBoxes(),
            {"left", "right"},
@@ -362,7 +400,7 @@ Scene remoteBoxOverLocalBox() {
   return scene;
 }
 
-TEST(NonPenetration, ARemotePartDrivenDownThroughALocalOneOnAPlate) {
+TEST_P(NonPenetration, ARemotePartDrivenDownThroughALocalOneOnAPlate) {
   for (const double voxelM : kVoxelsM) {
     // the remote part's stream goes 20 mm down through the local box, whose user holds it
     // where it is: the remote part presses it towards the plate and stops on it
