@@ -113,6 +113,8 @@ SceneModelOptions sceneModelOptions(const SimOptions& o, Console& console, doubl
   options.sim.geometricalAwareness = !o.noAwareness;
   options.sim.preContactDamping = o.preContactDamping;
   if (o.surfaceContact) {
+    if (o.pointLayer.value_or(0) > 0)
+      throw UsageError("--point-layer takes the points off the surface, where --surface-contact needs them");
     options.sim.surfaceContact = true;
     options.sim.forceLayer = kSurfaceContactForceLayer;
   }

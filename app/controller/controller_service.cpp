@@ -323,8 +323,9 @@ void ControllerService::setParameters(std::uint64_t client, std::uint64_t id,
     const std::uint32_t value = request.force_layer();
     if (value > 255 || !model.forceLayerInRange(static_cast<std::uint8_t>(value))) {
       fail(reply,
-           "force_layer " + std::to_string(value) + " is outside 1 to " +
-               std::to_string(model.maxForceLayer()) + " (the values every pair's voxmap renders)",
+           "force_layer " + std::to_string(value) + " is outside " + std::to_string(model.minForceLayer()) +
+               " to " + std::to_string(model.maxForceLayer()) +
+               " (the values every pair's voxmap renders; at least 3 with surface contact)",
            "force_layer");
       return;
     }

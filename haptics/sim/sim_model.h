@@ -103,8 +103,18 @@ struct SimModel {
     return largest;
   }
 
-  /// Whether `value` is a force layer every pair's voxmap can render (1 … maxForceLayer()).
-  bool forceLayerInRange(std::uint8_t value) const noexcept { return value >= 1 && value <= maxForceLayer(); }
+  /// The smallest force layer every pair can take: kSurfaceContactForceLayer when a pair's
+  /// contact is by surface planes (it pushes points in that layer), else 1.
+  std::uint8_t minForceLayer() const noexcept {
+    for (const PairModel& pair : pairs)
+      if (pair.params.surfaceContactM > 0.0) return kSurfaceContactForceLayer;
+    return 1;
+  }
+
+  /// Whether `value` is a force layer every pair can take (minForceLayer() … maxForceLayer()).
+  bool forceLayerInRange(std::uint8_t value) const noexcept {
+    return value >= minForceLayer() && value <= maxForceLayer();
+  }
 
   const Voxmap& voxmapOf(const PairModel& pair) const {
     return pair.voxmapObject == kStaticEnvironment

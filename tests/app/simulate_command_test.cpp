@@ -270,6 +270,14 @@ TEST_F(SimulateCommand, SurfaceContactLetsThePegComeCloserWithoutPenetration) {
   EXPECT_GT(voxelPlanes.at("min_clearance_m").get<double>(), 0.001) << voxelPlanes.dump(2);
 }
 
+TEST_F(SimulateCommand, PointsInAFreeLayerAreRefusedWithSurfaceContact) {
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n");
+  const CliRun r = voxhap({"simulate", asset("peg-in-hole.glb"), "--move", "peg", "--script", script,
+                           "--point-layer", "1", "--surface-contact"});
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("--point-layer"), std::string::npos) << r.err;
+}
+
 TEST_F(SimulateCommand, CheckExactOptionsAreChecked) {
   const std::string script = writeScript("0 1 0 0 0 0 0 0\n");
   for (const std::vector<std::string>& extra :

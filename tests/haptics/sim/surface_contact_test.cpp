@@ -132,5 +132,17 @@ TEST(SurfaceContact, PointsMoreThanTwoVoxelsApartAreRefused) {
   EXPECT_THROW(buildSceneModel(scene, {"ball"}, options), Error);
 }
 
+TEST(SurfaceContact, AForceLayerThatDoesNotReachItsPointsIsRefusedWhileRunning) {
+  const Scene scene =
+      onPlate("ball", [](TriangleMesh& m) { appendGeodesicSphere(m, test::at(0, 0, 0.011), 0.01, 3); });
+  for (const bool surface : {true, false}) {
+    const SimModel model = surfaceModel(scene, {"ball"}, 0.001, surface);
+    LocalSimulation sim(model);
+    EXPECT_EQ(model.minForceLayer(), surface ? kSurfaceContactForceLayer : 1);
+    EXPECT_EQ(setForceLayer(model, sim.state, sim.workspace, distanceValue(0)), !surface);
+    EXPECT_TRUE(setForceLayer(model, sim.state, sim.workspace, kSurfaceContactForceLayer));
+  }
+}
+
 }  // namespace
 }  // namespace voxhap
