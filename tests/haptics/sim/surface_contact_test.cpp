@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "haptics/core/error.h"
+#include "haptics/scene/builtin/builtin_scenes.h"
 #include "haptics/sim/local_simulation.h"
 #include "support/contact_scenes.h"
 
@@ -116,6 +117,36 @@ TEST(SurfaceContact, DISABLED_CrossedRodsRestEdgeOnEdgeWithoutCrossing) {
     std::printf("crossed rods at %.2f mm voxels: rest gap %.3f voxel, least %.3f voxel\n", voxelM * 1e3,
                 r.gapM / voxelM, r.lowestM / voxelM);
   }
+}
+
+// DISABLED (known failure, the reason surface contact is not the default): the seated ball,
+// its points half a voxel inward (the clearance its limits need), turned about x by its
+// handle, does not turn: 0.005 rad of the 1.57 asked in 0.5 s at 1 mm voxels, where voxel
+// planes turn it at the handle's rate. A voxel's plane is extrapolated to points up to 0.87
+// voxel from its centre, across the socket's rim: the top face's plane under points already
+// over the hole, the rim's tilted plane under points sliding past it. Both lie inside the
+// true distance (a convex edge), so rows at their own limits (depth_limit.h) refuse the
+// turn. Dropping the limits of rows whose push is more than 37° off the point's normal lets
+// it turn, but lets a bar's face sink 1.1 voxel into a block's edge (non-penetration
+// cases). The cure is a better distance at a point than its voxel's plane near edges.
+TEST(SurfaceContact, DISABLED_TheSeatedBallTurnsInItsSocket) {
+  const Scene scene = makeBallAndSocket();
+  SceneModelOptions options = test::ampleCapacityOptions();
+  options.staticVoxelSizeM = 0.001;
+  options.pointSpacingM = 0.001;
+  options.pointDisplacementM = -0.0005;
+  options.sim.surfaceContact = true;
+  options.sim.forceLayer = kSurfaceContactForceLayer;
+  const SimModel model = buildSceneModel(scene, {"ball"}, options);
+  LocalSimulation sim(model);
+  constexpr double kTurnRad = 0.5 * M_PI;
+  HandleInput handle;
+  for (int frame = 1; frame <= 500; ++frame) {
+    handle.poseWorld.orientation = quatFromRotationVector(glm::dvec3(kTurnRad * frame / 500.0, 0.0, 0.0));
+    sim.step({&handle, 1});
+  }
+  const double turnedRad = glm::length(rotationVector(objectPose(model, sim.state, 0).orientation));
+  EXPECT_NEAR(turnedRad, kTurnRad, 0.1);
 }
 
 TEST(SurfaceContact, PointsMoreThanTwoVoxelsApartAreRefused) {
