@@ -143,6 +143,7 @@ std::unique_ptr<net::PeerSession> startPeer(const PeerRunOptions& peer,
   o.parameters.set_point_offset_m(session.pointOffsetM);
   o.parameters.set_force_layer(makeSimState(model).forceLayer);
   o.parameters.set_moving_objects(static_cast<std::uint32_t>(model.objects.size()));
+  o.parameters.set_surface_contact(model.usesSurfaceContact());
   auto peerSession =
       std::make_unique<net::PeerSession>(io, sessionKey(peer, console), std::move(o),
                                          [&console](const std::string& line) { console.info(line); });

@@ -103,13 +103,15 @@ struct SimModel {
     return largest;
   }
 
-  /// The smallest force layer every pair can take: kSurfaceContactForceLayer when a pair's
-  /// contact is by surface planes (it pushes points in that layer), else 1.
-  std::uint8_t minForceLayer() const noexcept {
-    for (const PairModel& pair : pairs)
-      if (pair.params.surfaceContactM > 0.0) return kSurfaceContactForceLayer;
-    return 1;
+  /// Whether a pair's contact is by surface planes (SimOptions::surfaceContact).
+  bool usesSurfaceContact() const noexcept {
+    return std::any_of(pairs.begin(), pairs.end(),
+                       [](const PairModel& pair) { return pair.params.surfaceContactM > 0.0; });
   }
+
+  /// The smallest force layer every pair can take: kSurfaceContactForceLayer with surface
+  /// contact (it pushes points in that layer), else 1.
+  std::uint8_t minForceLayer() const noexcept { return usesSurfaceContact() ? kSurfaceContactForceLayer : 1; }
 
   /// Whether `value` is a force layer every pair can take (minForceLayer() … maxForceLayer()).
   bool forceLayerInRange(std::uint8_t value) const noexcept {

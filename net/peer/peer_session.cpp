@@ -99,6 +99,11 @@ std::string refusal(const pb::SessionParameters& mine, const pb::SessionParamete
     warnings.push_back(differs("point offset (m)", theirs.point_offset_m(), mine.point_offset_m()));
   if (mine.force_layer() != theirs.force_layer())
     warnings.push_back(differs("force layer", theirs.force_layer(), mine.force_layer()));
+  if (mine.surface_contact() != theirs.surface_contact()) {
+    auto contact = [](bool surface) { return surface ? "surface planes" : "voxel planes"; };
+    warnings.push_back(std::string("contact by ") + contact(theirs.surface_contact()) + " here, by " +
+                       contact(mine.surface_contact()) + " there");
+  }
   return {};
 }
 

@@ -138,6 +138,14 @@ TEST(PeerSession, AnotherSceneIsRefusedAndOtherSizesAreAcceptedWithAWarning) {
   EXPECT_NE(coarse.session->warnings()[0].find("voxel size"), std::string::npos);
   EXPECT_TRUE(std::any_of(a.log.begin(), a.log.end(),
                           [](const std::string& l) { return l.find("voxel size") != std::string::npos; }));
+  pb::SessionParameters surface = parameters();
+  surface.set_surface_contact(true);
+  TestPeer finer(io, "fi", surface);
+  finer.session->join("127.0.0.1", a.session->port(), 5s);
+  ASSERT_EQ(finer.session->warnings().size(), 1u);
+  EXPECT_NE(finer.session->warnings()[0].find("contact by surface planes here, by voxel planes there"),
+            std::string::npos)
+      << finer.session->warnings()[0];
 }
 
 TEST(PeerSession, WithAnotherKeyNothingAnswers) {
