@@ -5,6 +5,8 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "haptics/collide/surface_distance.h"
+
 namespace voxhap {
 namespace {
 
@@ -99,11 +101,9 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     glm::dvec3 pushDirection;
     double depth = 0.0;
     if (plane) {
-      const glm::dvec3 outward = plane->outwardUnit();
-      pushDirection = -outward;
-      const double distanceM =
-          plane->distanceVoxels() * s + glm::dot(p - grid.voxelCentre(c.ijkVoxel), outward);
-      if (!beforeContact) depth = params.surfaceContactM - distanceM;
+      const SurfaceDistance phi = surfaceDistance(voxmap, c.ijkVoxel, *plane, p);
+      pushDirection = -phi.outwardUnit;
+      if (!beforeContact) depth = params.surfaceContactM - phi.distanceM;
     } else {
       const glm::dvec3 n = shellToVoxmapRotation * glm::dvec3(shell.normalsLocal[c.point]);
       const PointFeature feature = shell.features[c.point];

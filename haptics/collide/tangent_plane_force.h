@@ -23,8 +23,9 @@
 /// face-parallel surface d is continuous across voxels.
 ///
 /// Contact finer than a voxel (ContactParams::surfaceContactM = L > 0, beyond the paper):
-/// the voxel's surface plane (surface_planes.h) gives the point's distance from the voxmap
-/// object's exact surface, φ = φ_c + (p − c)·n_c, and u = −n_c; the depth is d = L − φ,
+/// the surface planes give the point's distance from the voxmap object's exact surface,
+/// φ = φ_c + (p − c)·n_c for the plane of its voxel or of a surrounding one
+/// (surface_distance.h), and u = −n_c of that plane; the depth is d = L − φ,
 /// so that a point pushes once it comes closer than L, along the surface's exact normal
 /// (edges and corners included: no quantized fall direction). A contact without a plane
 /// pushes as above if it lies in an interior or surface voxel (deep inside, past the

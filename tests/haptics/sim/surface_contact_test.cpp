@@ -119,17 +119,13 @@ TEST(SurfaceContact, DISABLED_CrossedRodsRestEdgeOnEdgeWithoutCrossing) {
   }
 }
 
-// DISABLED (known failure, the reason surface contact is not the default): the seated ball,
-// its points half a voxel inward (the clearance its limits need), turned about x by its
-// handle, does not turn: 0.005 rad of the 1.57 asked in 0.5 s at 1 mm voxels, where voxel
-// planes turn it at the handle's rate. A voxel's plane is extrapolated to points up to 0.87
-// voxel from its centre, across the socket's rim: the top face's plane under points already
-// over the hole, the rim's tilted plane under points sliding past it. Both lie inside the
-// true distance (a convex edge), so rows at their own limits (depth_limit.h) refuse the
-// turn. Dropping the limits of rows whose push is more than 37° off the point's normal lets
-// it turn, but lets a bar's face sink 1.1 voxel into a block's edge (non-penetration
-// cases). The cure is a better distance at a point than its voxel's plane near edges.
-TEST(SurfaceContact, DISABLED_TheSeatedBallTurnsInItsSocket) {
+// The seated ball, its points half a voxel inward (the clearance its limits need), turned
+// about x by its handle, follows it. With each voxel's plane alone it did not (0.013 rad of
+// the 1.57 asked in 0.5 s at 1 mm voxels): a plane extrapolated up to 0.87 voxel from its
+// voxel's centre, across the socket's rim, lies under the true distance there, and rows at
+// their own limits (depth_limit.h) refused the turn. The surrounding voxels' planes
+// (surface_distance.h) give the rim its distance.
+TEST(SurfaceContact, TheSeatedBallTurnsInItsSocket) {
   const Scene scene = makeBallAndSocket();
   SceneModelOptions options = test::ampleCapacityOptions();
   options.staticVoxelSizeM = 0.001;
