@@ -20,17 +20,22 @@ namespace {
 /// A closest point this close to an edge or vertex (in voxels) takes its pseudo-normal.
 constexpr double kFeatureTolerance = 1e-6;
 
-/// Normals of the feature vertices and feature edges, by the voxels they pass through:
-/// a vertex or edge point pushes along its feature's normal, the same at every corner of
-/// a box whatever the lattice, rather than along the normal of whichever face lies
-/// nearest to its voxel's centre.
-class FeatureNormals {
+/// Normals and points of the feature vertices and feature edges, by the voxels they pass
+/// through: a vertex or edge point pushes along its feature's normal, the same at every
+/// corner of a box whatever the lattice, rather than along the normal of whichever face
+/// lies nearest to its voxel's centre; a point on the surface lies on its voxel's feature.
+class FeatureVoxels {
 public:
-  FeatureNormals(const VoxelGrid& grid, std::span<const MeshFeatures> features, const PseudoNormals& normals)
+  FeatureVoxels(const VoxelGrid& grid, std::span<const MeshFeatures> features, const PseudoNormals& normals)
       : grid_(grid) {
     for (std::size_t part = 0; part < features.size(); ++part) {
-      for (const glm::vec3& v : features[part].featureVertices) {
-        if (const auto n = normals.vertexNormal(part, v)) add(vertices_, glm::dvec3(v), *n);
+      for (const glm::vec3& vertex : features[part].featureVertices) {
+        const glm::dvec3 v(vertex);
+        const auto n = normals.vertexNormal(part, vertex);
+        forVoxelsHolding(v, [&](const glm::ivec3& voxel) {
+          if (n) vertices_[key(voxel)] += *n;
+          keepNearest(vertexPoints_, voxel, v);
+        });
       }
       for (const auto& [a, b] : features[part].featureEdges) {
         const auto n = normals.edgeNormal(part, a, b);
@@ -39,18 +44,32 @@ public:
         const glm::dvec3 along = glm::dvec3(b) - from;
         // samples a quarter voxel apart: each voxel's sum weighs its edges by length inside
         const int steps = 1 + static_cast<int>(std::ceil(4.0 * glm::length(along) / grid.voxelSizeM));
-        for (int k = 0; k <= steps; ++k) add(edges_, from + along * (static_cast<double>(k) / steps), *n);
+        for (int k = 0; k <= steps; ++k) {
+          forVoxelsHolding(from + along * (static_cast<double>(k) / steps), [&](const glm::ivec3& voxel) {
+            edges_[key(voxel)] += *n;
+            const double lengthSq = glm::dot(along, along);
+            const double t =
+                std::clamp(glm::dot(grid_.voxelCentre(voxel) - from, along) / lengthSq, 0.0, 1.0);
+            keepNearest(edgePoints_, voxel, from + t * along);
+          });
+        }
       }
     }
   }
 
   /// The normal of the point of voxel `v` labelled `feature`, if its feature was found.
   std::optional<glm::dvec3> normalOf(const glm::ivec3& v, PointFeature feature) const {
-    const auto& map = feature == PointFeature::Vertex ? vertices_ : edges_;
-    if (feature == PointFeature::Surface || !grid_.containsVoxel(v)) return std::nullopt;
-    const auto it = map.find(key(v));
-    if (it == map.end() || glm::length(it->second) == 0.0) return std::nullopt;
-    return glm::normalize(it->second);
+    const auto* found = find(feature == PointFeature::Vertex ? vertices_ : edges_, v, feature);
+    if (!found || glm::length(*found) == 0.0) return std::nullopt;
+    return glm::normalize(*found);
+  }
+
+  /// The point of the feature of voxel `v` labelled `feature` nearest its centre (the
+  /// vertex, or the nearest point of its edges), if its feature was found.
+  std::optional<glm::dvec3> pointOf(const glm::ivec3& v, PointFeature feature) const {
+    const auto* found = find(feature == PointFeature::Vertex ? vertexPoints_ : edgePoints_, v, feature);
+    if (!found) return std::nullopt;
+    return *found;
   }
 
 private:
@@ -59,23 +78,38 @@ private:
     return (static_cast<std::uint64_t>(v.x) << 42) | (static_cast<std::uint64_t>(v.y) << 21) |
            static_cast<std::uint64_t>(v.z);
   }
-  /// Adds `n` to every voxel whose closed box holds `pointLocal`: a feature on a voxel
-  /// boundary belongs to the voxels on both sides, as the rasterizer marks both.
-  void add(Map& map, const glm::dvec3& pointLocal, const glm::dvec3& n) {
+  const glm::dvec3* find(const Map& map, const glm::ivec3& v, PointFeature feature) const {
+    if (feature == PointFeature::Surface || !grid_.containsVoxel(v)) return nullptr;
+    const auto it = map.find(key(v));
+    return it == map.end() ? nullptr : &it->second;
+  }
+  /// Calls `visit` with every voxel whose closed box holds `pointLocal`: a feature on a
+  /// voxel boundary belongs to the voxels on both sides, as the rasterizer marks both.
+  template <typename Visit>
+  void forVoxelsHolding(const glm::dvec3& pointLocal, Visit&& visit) const {
     const double eps = 1e-6 * grid_.voxelSizeM;
     const glm::ivec3 lo = grid_.voxelOf(pointLocal - eps);
     const glm::ivec3 hi = grid_.voxelOf(pointLocal + eps);
     for (int z = lo.z; z <= hi.z; ++z) {
       for (int y = lo.y; y <= hi.y; ++y) {
         for (int x = lo.x; x <= hi.x; ++x) {
-          if (grid_.containsVoxel({x, y, z})) map[key({x, y, z})] += n;
+          if (grid_.containsVoxel({x, y, z})) visit(glm::ivec3(x, y, z));
         }
       }
     }
   }
+  /// Keeps `q` as voxel `v`'s point if it is nearer the voxel's centre than the one kept.
+  void keepNearest(Map& map, const glm::ivec3& v, const glm::dvec3& q) const {
+    const auto [it, added] = map.try_emplace(key(v), q);
+    const glm::dvec3 centre = grid_.voxelCentre(v);
+    if (!added && glm::length(q - centre) < glm::length(it->second - centre)) it->second = q;
+  }
+
   const VoxelGrid& grid_;
-  Map vertices_;
-  Map edges_;
+  Map vertices_;      ///< per voxel, the sum of its feature vertices' normals
+  Map edges_;         ///< per voxel, the sum of its feature edges' normals, by length
+  Map vertexPoints_;  ///< per voxel, the feature vertex nearest its centre
+  Map edgePoints_;    ///< per voxel, the point of its feature edges nearest its centre
 };
 
 /// The voxels of the free-space layer `layer` around `meshes` (surface field value
@@ -195,7 +229,7 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
 
   const EmbreeScene scene(meshes);
   const PseudoNormals pseudoNormals(meshes);
-  const FeatureNormals featureNormals(grid, features, pseudoNormals);
+  const FeatureVoxels featureVoxels(grid, features, pseudoNormals);
   // a free-layer voxel's centre lies within (layer + 1) voxel diagonals of the surface
   const double searchM = (options.freeLayer + 1) * s * std::sqrt(3.0);
   parallelFor(
@@ -215,8 +249,13 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
           glm::dvec3 normal(0.0, 0.0, 1.0);
           glm::dvec3 base = centre;
           if (options.onSurface) {
-            // a surface voxel's centre is within half its diagonal of the surface
-            if (const auto nearest = scene.closestPoint(centre, s)) {
+            // an edge or vertex voxel's point on its feature, so that a feature edge is
+            // sampled along its length however the lattice falls; a surface voxel's centre
+            // is within half its diagonal of the surface
+            if (const auto onFeature = featureVoxels.pointOf(v, feature)) {
+              base = *onFeature;
+              normal = featureVoxels.normalOf(v, feature).value_or(normal);
+            } else if (const auto nearest = scene.closestPoint(centre, s)) {
               base = nearest->point;
               normal = pseudoNormals.normalAt(*nearest, kFeatureTolerance * s);
             }
@@ -232,7 +271,7 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
                         : (inherited & kEdgeBit) ? PointFeature::Edge
                                                  : PointFeature::Surface;
             }
-          } else if (const auto n = featureNormals.normalOf(v, feature)) {
+          } else if (const auto n = featureVoxels.normalOf(v, feature)) {
             normal = *n;
           } else if (const auto nearest = scene.closestPoint(centre, s)) {
             // a surface voxel's centre is within half its diagonal of the surface

@@ -33,8 +33,12 @@ struct PointshellOptions {
   /// nearest surface point, their labels those of the surface voxel it lies in.
   int freeLayer = 0;
   /// Points on the surface: each surface voxel's point at the surface point nearest its
-  /// centre (then displaced), not at the centre, which may lie 0.87 voxel off it. For
-  /// contact finer than a voxel (surface planes); not with a free layer.
+  /// centre (then displaced), not at the centre, which may lie 0.87 voxel off it; an edge
+  /// or vertex voxel's at the point of its feature edges nearest its centre, or its feature
+  /// vertex, so that an edge is sampled along its length wherever the lattice falls (the
+  /// nearest surface point lies on the edge only where the centre is in the edge's wedge,
+  /// and another part's edge crossing it passed between the points). For contact finer
+  /// than a voxel (surface planes); not with a free layer.
   bool onSurface = false;
   int threads = 0;  ///< 0: all cores
 };

@@ -346,7 +346,9 @@ CachedPointshell pointshellCached(std::span<const SceneObject* const> objects,
   hash.addDouble(options.pointSpacingM);
   hash.addDouble(options.displacementM);
   hash.add(options.freeLayer);
-  hash.add(static_cast<std::uint8_t>(options.onSurface));
+  // on the surface, 2: edge and vertex voxels' points on their features (1: at the nearest
+  // surface point, whose cache entries are left behind)
+  hash.add(static_cast<std::uint8_t>(options.onSurface ? 2 : 0));
   const Digest128 key = hash.digest();
 
   checkPointshellOptions(options);

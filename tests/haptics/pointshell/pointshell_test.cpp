@@ -1,6 +1,8 @@
 #include "haptics/pointshell/pointshell.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -130,6 +132,46 @@ TEST(Pointshell, FreeLayerLiesOutsideAtItsDistanceWithOutwardNormals) {
   EXPECT_GT(shell.count(PointFeature::Vertex), 8u);
   options.freeLayer = kMaxFreeLayer + 1;
   EXPECT_THROW(buildPointshell(meshes, features, options), Error);
+}
+
+// A square rod turned 45° about its axis (y), as two crossed rods meet edge on edge: on
+// the surface, the points of its edge voxels lie on its edges, a spacing apart along them
+// wherever the lattice falls, so that another part's edge cannot pass between them.
+TEST(Pointshell, OnTheSurfaceEdgeVoxelsPointsLieOnTheEdgesASpacingApart) {
+  constexpr double kSpacingM = 0.0005;
+  constexpr double kHalfM = 0.002;
+  const glm::dvec3 axis(0.00037, 0.0, 0.00011);  // off the lattice
+  TriangleMesh rod;
+  appendBox(rod, glm::rotate(glm::translate(glm::dmat4(1.0), axis), M_PI / 4, glm::dvec3(0.0, 1.0, 0.0)),
+            glm::dvec3(kHalfM, 0.01, kHalfM));
+  const TriangleMesh* meshes[] = {&rod};
+  const MeshFeatures features[] = {extractFeatures(rod, kSpacingM)};
+  PointshellOptions options;
+  options.pointSpacingM = kSpacingM;
+  options.onSurface = true;
+  const Pointshell s = buildPointshell(meshes, features, options);
+  // the four long edges, in the x–z plane, a diagonal of the square from the axis
+  const double r = kHalfM * std::sqrt(2.0);
+  const glm::dvec2 edges[] = {
+      {axis.x + r, axis.z}, {axis.x - r, axis.z}, {axis.x, axis.z + r}, {axis.x, axis.z - r}};
+  for (const glm::dvec2& edge : edges) {
+    std::vector<double> along;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const glm::dvec3 p(s.positionsLocal[i]);
+      if (glm::length(glm::dvec2(p.x, p.z) - edge) < 1e-7 && std::abs(p.y) < 0.009) along.push_back(p.y);
+    }
+    std::sort(along.begin(), along.end());
+    ASSERT_GT(along.size(), 30u);
+    for (std::size_t k = 1; k < along.size(); ++k) EXPECT_LE(along[k] - along[k - 1], 1.001 * kSpacingM);
+  }
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const glm::dvec3 p(s.positionsLocal[i]);
+    if (s.features[i] == PointFeature::Surface || std::abs(p.y) > 0.0095) continue;
+    double nearestM = 1.0;
+    for (const glm::dvec2& edge : edges)
+      nearestM = std::min(nearestM, glm::length(glm::dvec2(p.x, p.z) - edge));
+    EXPECT_LT(nearestM, 1e-7) << "an edge voxel's point off the long edges, away from the ends";
+  }
 }
 
 TEST(Pointshell, RejectsBadSpacing) {

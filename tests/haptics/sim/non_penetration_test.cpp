@@ -18,6 +18,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "app/exact_checks.h"
@@ -307,6 +308,42 @@ TEST_P(NonPenetration, LongThinRodLeveredOverAnEdge) {
     expectWithinBound(
         "rod levered over an edge",
         Case{barOverEdge(glm::dvec3(0.06, 0.002, 0.002), 0.0025), {"bar"}, {lever}, voxelM, 0.0, 800});
+  }
+}
+
+/// Two square rods turned 45° about their axes, crossed, an edge of each facing the
+/// other's: the static one's top edge runs along x at z = 0, the moving one's lowest
+/// edge along y, `liftM` over it. Only an edge point of the moving rod can meet the static
+/// edge, which may pass between them.
+Scene crossedRods(double liftM) {
+  constexpr double kHalfM = 0.002;
+  const double edgeM = kHalfM * std::sqrt(2.0);
+  Scene scene;
+  scene.objects.push_back(test::meshObject("lower", ObjectRole::Static, [&](TriangleMesh& m) {
+    appendBox(m, glm::rotate(at(0.0, 0.00013, -edgeM), M_PI / 4, glm::dvec3(1.0, 0.0, 0.0)),
+              glm::dvec3(0.03, kHalfM, kHalfM));
+  }));
+  scene.objects.push_back(test::meshObject("upper", ObjectRole::Dynamic, [&](TriangleMesh& m) {
+    appendBox(m, glm::rotate(at(0.00021, 0.0, liftM + edgeM), M_PI / 4, glm::dvec3(0.0, 1.0, 0.0)),
+              glm::dvec3(kHalfM, 0.03, kHalfM));
+  }));
+  return scene;
+}
+
+// Surface planes only. With voxel planes (known failure) the static edge cuts 0.23 mm
+// (0.23 voxel) into the upper rod at 1 mm voxels and 0.41 mm (0.58 voxel) at 0.7 mm, pressed
+// 50 mm: the edge–edge rows are averaged with the pair's others (depth_limit.h). Surface
+// planes hold them since the points of an edge voxel lie on its edge (pointshell.h).
+TEST_P(NonPenetration, CrossedRodsPressedEdgeOnEdge) {
+  if (!surface()) GTEST_SKIP() << "known failure with voxel planes: 0.58 voxel deep at 0.7 mm";
+  for (const double voxelM : kVoxelsM) {
+    for (const double pressM : {0.005, 0.05}) {
+      const HandleFn press = [pressM](double t) {
+        return moved(0.0, 0.0, -(0.002 + pressM) * std::min(1.0, t / 0.2));
+      };
+      expectWithinBound("crossed rods pressed " + std::to_string(static_cast<int>(pressM * 1e3)) + " mm",
+                        Case{crossedRods(0.002), {"upper"}, {press}, voxelM, 0.0, 400});
+    }
   }
 }
 

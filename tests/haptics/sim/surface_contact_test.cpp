@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "haptics/collide/exact_penetration.h"
 #include "haptics/core/error.h"
 #include "haptics/scene/builtin/builtin_scenes.h"
 #include "haptics/sim/local_simulation.h"
@@ -89,15 +90,14 @@ TEST(SurfaceContact, ABoxRestsFlatWithinAQuarterVoxelWhereTheVoxelPlanesHoldItNe
   }
 }
 
-// DISABLED (known failure): the upper rod's edge meets the lower's between its points
-// (half a point spacing from the nearest, or more where the points on an edge bunch), so
-// the edges cross by 0.07-0.11 mm before a point holds them, then creep on by about
-// 0.1 µm a frame and pass through within 1,500 frames at every voxel size here. Points
-// alone cannot see an edge of the other part between them: the other part's pointshell
-// against this one's voxels would (for a moving pair), a static edge has none.
-TEST(SurfaceContact, DISABLED_CrossedRodsRestEdgeOnEdgeWithoutCrossing) {
-  // two square rods turned 45° about their axes, an edge of each facing the other: the
-  // upper one falls onto the lower, whose top edge is at `edge`
+// Two square rods turned 45° about their axes, crossed, an edge of each facing the other:
+// the upper one, held level by its handle, is let down onto the lower's edge and pressed
+// 1 mm past it. Its lowest edge must rest within a quarter voxel of the lower's edge
+// without crossing it, by exact probes (the rod cannot rest free: it tips off the edge
+// like a seesaw). Only the points on the upper's edge can meet the lower's edge; when they
+// lay wherever the lattice put the surface point nearest a voxel's centre, the edges
+// crossed by up to 0.3 voxel (non_penetration_test.cpp, CrossedRodsPressedEdgeOnEdge).
+TEST(SurfaceContact, CrossedRodsRestEdgeOnEdgeWithinAQuarterVoxelWithoutCrossing) {
   const double half = 0.002;
   const double edge = half * std::sqrt(2.0);
   for (const double voxelM : kVoxelsM) {
@@ -111,11 +111,25 @@ TEST(SurfaceContact, DISABLED_CrossedRodsRestEdgeOnEdgeWithoutCrossing) {
                 glm::rotate(test::at(0.00021, 0.0, 2.0 * edge + 0.002), M_PI / 4, glm::dvec3(0.0, 1.0, 0.0)),
                 glm::dvec3(half, 0.03, half));
     }));
-    const Rest r = settle(scene, surfaceModel(scene, {"upper"}, voxelM), 1500, edge);
-    EXPECT_GT(r.lowestM, 0.0) << "the edges crossed at " << voxelM;
-    EXPECT_LE(r.gapM, 0.25 * voxelM) << voxelM;
-    std::printf("crossed rods at %.2f mm voxels: rest gap %.3f voxel, least %.3f voxel\n", voxelM * 1e3,
-                r.gapM / voxelM, r.lowestM / voxelM);
+    SimModel model = surfaceModel(scene, {"upper"}, voxelM);
+    model.objects[0].coupled = true;
+    LocalSimulation sim(model);
+    ExactPenetration exact({{&scene.objects[1].parts[0].mesh}}, {{&scene.objects[0].parts[0].mesh}},
+                           voxelM / kProbesPerVoxel);
+    HandleInput handle;
+    double deepestM = 0.0;
+    PenetrationSample last;
+    for (int frame = 1; frame <= 1000; ++frame) {
+      handle.poseWorld.position.z = -0.003 * std::min(1.0, frame / 300.0);
+      sim.step({&handle, 1});
+      if (frame % 20 != 0) continue;
+      last = exact.measure(objectPose(model, sim.state, 0), Pose{});
+      deepestM = std::max(deepestM, last.depthM);
+    }
+    EXPECT_EQ(deepestM, 0.0) << "the edges crossed at " << voxelM;
+    EXPECT_LE(last.clearanceM, 0.25 * voxelM) << voxelM;
+    std::printf("crossed rods at %.2f mm voxels: rest gap %.3f voxel, deepest %.3f voxel\n", voxelM * 1e3,
+                last.clearanceM / voxelM, deepestM / voxelM);
   }
 }
 
