@@ -325,7 +325,9 @@ void ControllerService::setParameters(std::uint64_t client, std::uint64_t id,
       fail(reply,
            "force_layer " + std::to_string(value) + " is outside " + std::to_string(model.minForceLayer()) +
                " to " + std::to_string(model.maxForceLayer()) +
-               " (the values every pair's voxmap renders; at least 3 with surface contact)",
+               (model.usesSurfaceContact() ? " (the values every pair's voxmap renders that reach the points "
+                                             "of contact by surface planes)"
+                                           : " (the values every pair's voxmap renders)"),
            "force_layer");
       return;
     }

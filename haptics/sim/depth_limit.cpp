@@ -77,6 +77,15 @@ void setMasses(Limit& l, std::span<const Delta> deltas) {
   }
 }
 
+/// A limit of the objects of `row`, with its limit and no rows yet.
+Limit limitOf(const DepthRow& row) {
+  Limit l;
+  l.bodyA = row.shellObject;
+  l.bodyB = row.voxmapObject;
+  l.limitM = row.limitM;
+  return l;
+}
+
 /// Sums each pair's rows (a run with the same two objects) into its limit; returns how
 /// many pairs.
 std::size_t groupRows(DepthLimitScratch& s, std::size_t rowCount, std::span<const RigidBodyState> before) {
@@ -88,11 +97,7 @@ std::size_t groupRows(DepthLimitScratch& s, std::size_t rowCount, std::span<cons
     if (!(weight > 0.0)) continue;
     if (count == 0 || s.limits[count - 1].bodyA != row.shellObject ||
         s.limits[count - 1].bodyB != row.voxmapObject) {
-      Limit& l = s.limits[count++];
-      l = Limit{};
-      l.bodyA = row.shellObject;
-      l.bodyB = row.voxmapObject;
-      l.limitM = row.limitM;
+      s.limits[count++] = limitOf(row);
     }
     addRow(s.limits[count - 1], row, weight, before);
   }
@@ -188,10 +193,7 @@ std::size_t limitPassingRows(DepthLimitScratch& s, std::size_t count, std::size_
   for (std::size_t k = 0; k < added; ++k) {
     DepthRow& row = s.rows[worst[k].second];
     Limit& l = s.limits[count + k];
-    l = Limit{};
-    l.bodyA = row.shellObject;
-    l.bodyB = row.voxmapObject;
-    l.limitM = row.limitM;
+    l = limitOf(row);
     addRow(l, row, 1.0, before);
     normalise(l);
     setMasses(l, s.deltas);
@@ -208,8 +210,9 @@ double surfaceRowScale(const DepthLimitScratch& s, std::size_t rowCount,
   for (std::size_t r = 0; r < rowCount; ++r) {
     const DepthRow& row = s.rows[r];
     if (!row.surfacePlane) continue;
-    const double allowed = std::max(row.limitM - row.depthM, 0.0) + kResidualOfLimit * row.limitM;
-    const double gain = rowExcessM(row, s.deltas, before) + std::max(row.limitM - row.depthM, 0.0);
+    const double targetM = std::max(row.limitM - row.depthM, 0.0);
+    const double allowed = targetM + kResidualOfLimit * row.limitM;
+    const double gain = rowExcessM(row, s.deltas, before) + targetM;
     if (gain > allowed) scale = std::min(scale, allowed / gain);
   }
   return scale;
