@@ -70,7 +70,12 @@ std::vector<SurfacePlane> computeSurfacePlanes(const Voxmap& voxmap,
           const std::uint8_t value = voxmap.value(ijk, Field::Surface);
           if (value == kValueFar || value > outermost) continue;
           const glm::dvec3 c = grid.voxelCentre(ijk);
-          const auto q = scene.closestPoint(c, kSurfacePlaneReachVoxels * s);
+          // a surface or free voxel k layers out (chessboard) has surface within k + ½
+          // voxel diagonals of its centre; the query's radius bounds the triangles it visits
+          const double reachVoxels = value == kValueInterior
+                                         ? kSurfacePlaneReachVoxels
+                                         : (value - kValueFeature + 0.5) * std::sqrt(3.0) + 1e-3;
+          const auto q = scene.closestPoint(c, reachVoxels * s);
           if (!q) continue;
           const glm::dvec3 normal = pseudoNormals.normalAt(*q, 1e-9 * s);
           const bool inside =
