@@ -128,6 +128,7 @@ const std::vector<ErrorScene>& errorScenes() {
 std::vector<BenchColumn> errorColumns() {
   return {
       {"scene", "scene", BenchStyle::Text},
+      {"contact", "contact", BenchStyle::Text},
       {"voxel_size_m", "voxel mm", BenchStyle::Millimetres, 2},
       {"bits", "bits", BenchStyle::Count},
       {"awareness", "aware", BenchStyle::Count},
@@ -233,7 +234,7 @@ HandleInput rodHandleAt(double tS, double startGapM) {
 }
 
 void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, double voxelM, int bits,
-                  bool aware, bool coherent, BenchTable& table) {
+                  bool aware, bool surface, bool coherent, BenchTable& table) {
   model.coherence.enabled = coherent;
   LocalSimulation sim(model);
   const SimState& state = sim.state;
@@ -251,6 +252,7 @@ void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, dou
 
   const std::size_t r = table.addRow();
   table.set(r, "scene", std::string(es.name));
+  table.set(r, "contact", std::string(surface ? "surface" : "paper"));
   table.set(r, "voxel_size_m", voxelM);
   table.set(r, "bits", std::int64_t{bits});
   table.set(r, "awareness", std::int64_t{aware ? 1 : 0});
@@ -278,6 +280,7 @@ struct ErrorArgs {
   std::vector<std::string> scenes;  ///< --scene, in order
   std::vector<double> voxelSizesM;  ///< --voxel-size, in order
   std::vector<int> bitWidths;       ///< --bits, in order
+  std::vector<bool> surface;        ///< --contact, in order: surface planes (true) or the paper's
   SimOptions sim;                   ///< --capacity and the cache
 };
 
@@ -307,7 +310,10 @@ BenchTable runError(const ErrorArgs& args, Console& console) {
     const bool named = std::find(sceneNames.begin(), sceneNames.end(), es.name) != sceneNames.end();
     if (sceneNames.empty() ? (!quick || es.quick) : named) chosen.push_back(&es);
   }
-  const std::size_t total = chosen.size() * sizes.size() * bitWidths.size() * awareness.size();
+  std::vector<bool> contacts = args.surface;
+  if (contacts.empty()) contacts = {false, true};
+  const std::size_t total =
+      chosen.size() * sizes.size() * bitWidths.size() * awareness.size() * contacts.size();
   std::size_t done = 0;
   const ProgressFn progress = console.progress("error");
   for (const ErrorScene* es : chosen) {
@@ -319,21 +325,25 @@ BenchTable runError(const ErrorArgs& args, Console& console) {
       }
       for (const int bits : bitWidths) {
         for (const bool aware : awareness) {
-          SceneModelOptions options;
-          options.staticVoxelSizeM = voxelM;
-          options.pointSpacingM = voxelM;
-          options.bitsPerField = bits;
-          options.pointDisplacementM = es->displaceHalfVoxel ? -0.5 * voxelM : 0.0;
-          options.sim.gravityWorld = kGravity;
-          options.sim.geometricalAwareness = aware;
-          options.sim.forceLayer = std::min(kDefaultForceLayer, VoxelEncoding::forBits(bits).maxValue());
-          options.sim.coherence.capacityTests = capacity;
-          useVoxelCache(options, cache, console);
-          SimModel model = buildSceneModel(scene, {es->moving}, options);
-          model.objects[0].coupled = es->held;
-          for (const bool coherent : {true, false})
-            measureModel(*es, scene, model, voxelM, bits, aware, coherent, table);
-          if (progress) progress(static_cast<double>(++done) / static_cast<double>(total));
+          for (const bool surface : contacts) {
+            SceneModelOptions options;
+            options.staticVoxelSizeM = voxelM;
+            options.pointSpacingM = voxelM;
+            options.bitsPerField = bits;
+            options.pointDisplacementM = es->displaceHalfVoxel ? -0.5 * voxelM : 0.0;
+            options.sim.gravityWorld = kGravity;
+            options.sim.geometricalAwareness = aware;
+            options.sim.forceLayer = std::min(kDefaultForceLayer, VoxelEncoding::forBits(bits).maxValue());
+            options.sim.surfaceContact = surface;
+            if (surface) options.sim.forceLayer = kSurfaceContactForceLayer;
+            options.sim.coherence.capacityTests = capacity;
+            useVoxelCache(options, cache, console);
+            SimModel model = buildSceneModel(scene, {es->moving}, options);
+            model.objects[0].coupled = es->held;
+            for (const bool coherent : {true, false})
+              measureModel(*es, scene, model, voxelM, bits, aware, surface, coherent, table);
+            if (progress) progress(static_cast<double>(++done) / static_cast<double>(total));
+          }
         }
       }
     }
@@ -349,16 +359,18 @@ Benchmark errorBenchmark() {
   b.name = "error";
   b.summary = "Time against error: gap and force direction at rest in the analytic scenes.";
   b.usage =
-      "[--quick] [--scene NAME …] [--voxel-size LENGTH …] [--bits 2|4|8 …] [--capacity N]\n"
-      "       [--cache-dir DIR] [--no-cache]";
+      "[--quick] [--scene NAME …] [--voxel-size LENGTH …] [--bits 2|4|8 …] [--contact paper|surface …]\n"
+      "       [--capacity N] [--cache-dir DIR] [--no-cache]";
   b.description =
       "Sphere on plane, box on plane, ball in socket (built-in, ball seated, points half a\n"
       "voxel inward), peg in hole (built-in, 0.2 mm clearance, the peg dropped from 1 mm above\n"
       "the mouth) and crossed square rods (the upper held by its handle, lowered onto the\n"
       "exact touching pose), swept over voxel sizes 2, 1, 0.5 and 0.25 mm (points at the\n"
       "same spacing), 2-, 4- and 8-bit fields (2-bit: force layer 3, the only free layer),\n"
-      "geometrical awareness on and off, and coherence on (capacity measured online unless\n"
-      "--capacity) and off. Free objects fall from 3 voxels above touching under gravity.\n\n"
+      "geometrical awareness on and off, the paper's contact (the voxels' tangent planes) and\n"
+      "contact finer than a voxel (exact surface planes kept with the voxels), and coherence\n"
+      "on (capacity measured online unless --capacity) and off. Free objects fall from 3\n"
+      "voxels above touching under gravity.\n\n"
       "After settling: gap_m, the signed gap between the exact meshes at the final pose from\n"
       "Embree (closest distances of vertices and 20 um edge samples of either surface to\n"
       "the other; negative: the deepest such point inside the other), force_angle_deg, the\n"
@@ -366,12 +378,13 @@ Benchmark errorBenchmark() {
       "normal, the rods' common normal, the resultant that carries the weight), and\n"
       "compute_p50_us, the median frame. Also: final contacts, speed (settled?) and missed\n"
       "deadlines. The SVG plots compute_p50_us against |gap_m| (floored at 1 um), one series\n"
-      "per scene.\n\n"
-      "--quick: sphere and box on plane at 2 mm, 4-bit, aware, coherence on and off.\n\n"
+      "per contact.\n\n"
+      "--quick: sphere and box on plane at 2 mm, 4-bit, aware, both contacts, coherence on\n"
+      "and off.\n\n"
       "Examples:\n"
       "  voxhap bench error --quick --json\n"
       "  voxhap bench error --csv error.csv --svg error.svg\n"
-      "  voxhap bench error --scene crossed-rods --voxel-size 0.5mm --bits 4";
+      "  voxhap bench error --scene crossed-rods --voxel-size 0.5mm --bits 4 --contact surface";
   b.addOptions = [](CLI::App& command) -> BenchRunFn {
     auto args = std::make_shared<ErrorArgs>();
     command.add_flag("--quick", args->quick, "a small subset for CI (see above)");
@@ -394,6 +407,14 @@ Benchmark errorBenchmark() {
                           throw UsageError("--bits wants 2, 4 or 8, got " + text);
                         bitWidths.push_back(static_cast<int>(bits));
                       });
+    addRepeatedOption(command, "--contact", "KIND",
+                      "paper (the voxels' tangent planes) or surface (surface planes, finer than a voxel); "
+                      "repeatable; default both",
+                      [&surface = args->surface](const std::string& kind) {
+                        if (kind != "paper" && kind != "surface")
+                          throw UsageError("--contact wants paper or surface, got " + kind);
+                        surface.push_back(kind == "surface");
+                      });
     addSimOptions(command, args->sim, {SimOption::Capacity, SimOption::Cache});
     command.get_option("--capacity")
         ->description("point tests per frame with coherence on (default: measured online)");
@@ -404,7 +425,7 @@ Benchmark errorBenchmark() {
     spec.title = "Frame time against error at rest";
     spec.xKey = "abs_gap_m";
     spec.yKey = "compute_p50_us";
-    spec.seriesKey = "scene";
+    spec.seriesKey = "contact";
     spec.xLabel = "|gap| at rest, m (exact meshes, Embree)";
     spec.yLabel = "compute p50, us";
     spec.logX = true;

@@ -216,9 +216,10 @@ TEST_F(BenchCommand, ScalingQuickMeasuresTwoShellSizesCoherentAndBruteForce) {
   EXPECT_NE(slurp(dir_ / "s.svg").find("<svg"), std::string::npos);
 }
 
-constexpr const char* kErrorKeys[] = {
-    "scene", "voxel_size_m",    "bits",      "awareness",      "coherence", "points",    "compute_p50_us",
-    "gap_m", "force_angle_deg", "abs_gap_m", "gap_over_voxel", "contacts",  "speed_mps", "missed_deadlines"};
+constexpr const char* kErrorKeys[] = {"scene",     "contact",         "voxel_size_m",    "bits",
+                                      "awareness", "coherence",       "points",          "compute_p50_us",
+                                      "gap_m",     "force_angle_deg", "abs_gap_m",       "gap_over_voxel",
+                                      "contacts",  "speed_mps",       "missed_deadlines"};
 
 TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
   const CliRun r = voxhap({"bench", "error", "--quick", "--json", "--csv", "e.csv", "--svg", "e.svg"});
@@ -226,7 +227,7 @@ TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
   const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
   EXPECT_EQ(j.at("benchmark"), "error");
   const nlohmann::ordered_json& rows = j.at("rows");
-  ASSERT_EQ(rows.size(), 4u) << j.dump(2);
+  ASSERT_EQ(rows.size(), 8u) << j.dump(2);
   for (const nlohmann::ordered_json& row : rows) {
     ASSERT_EQ(row.size(), std::size(kErrorKeys)) << row.dump();
     std::size_t k = 0;
@@ -244,17 +245,23 @@ TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
     EXPECT_GT(row.at("points").get<std::int64_t>(), 0);
   }
   EXPECT_EQ(rows[0].at("scene"), "sphere-on-plane");
+  EXPECT_EQ(rows[0].at("contact"), "paper");
   EXPECT_EQ(rows[0].at("coherence"), 1);
   EXPECT_EQ(rows[1].at("coherence"), 0);
-  EXPECT_EQ(rows[2].at("scene"), "box-on-plane");
-  EXPECT_EQ(lineCount(slurp(dir_ / "e.csv")), 5);
-  EXPECT_NE(slurp(dir_ / "e.svg").find("sphere-on-plane"), std::string::npos);
+  EXPECT_EQ(rows[2].at("contact"), "surface");
+  EXPECT_EQ(rows[4].at("scene"), "box-on-plane");
+  // contact finer than a voxel rests the parts closer than the voxels' planes do
+  for (const std::size_t paper : {0u, 4u})
+    EXPECT_LT(rows[paper + 2].at("gap_m").get<double>(), rows[paper].at("gap_m").get<double>());
+  EXPECT_EQ(lineCount(slurp(dir_ / "e.csv")), 9);
+  EXPECT_NE(slurp(dir_ / "e.svg").find("surface"), std::string::npos);
 }
 
 TEST_F(BenchCommand, ErrorRefusesAnUnknownSceneOrBitWidthBeforeMeasuring) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"bench", "error", "--scene", "teapot"},
-        std::vector<std::string>{"bench", "error", "--bits", "3"}}) {
+        std::vector<std::string>{"bench", "error", "--bits", "3"},
+        std::vector<std::string>{"bench", "error", "--contact", "exact"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
