@@ -217,7 +217,8 @@ HudActions Hud::draw(const HudModel& model) {
   } else {
     ImGui::PushItemWidth(kControlWidthPx);
     actions.forceLayer = commitOnRelease(forceLayerEdit_, model.forceLayer, [&](int* layer) {
-      ImGui::SliderInt("force layer", layer, 0, model.forceLayerMax, "%d", ImGuiSliderFlags_AlwaysClamp);
+      ImGui::SliderInt("force layer", layer, model.forceLayerMin, model.forceLayerMax, "%d",
+                       ImGuiSliderFlags_AlwaysClamp);
     });
     layout_.forceLayerSlider = lastItemRect();
 

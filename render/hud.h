@@ -72,8 +72,9 @@ struct HudModel {
   std::vector<HudObject> objects;
   /// Edge of a voxel, m.
   double voxelSizeM = 0.0;
-  /// Force layer in use and the deepest one the voxmaps hold.
+  /// Force layer in use, and the range every pair takes (up to the deepest the voxmaps hold).
   int forceLayer = 0;
+  int forceLayerMin = 0;
   int forceLayerMax = 0;
   /// Offset of the pointshell points along their normals, m, and its slider's bound.
   double pointOffsetM = 0.0;

@@ -394,6 +394,7 @@ void ControllerService::setParameters(std::uint64_t client, std::uint64_t id,
 void ControllerService::parameters(pb::Parameters& out) const {
   const SimModel& model = session_->built->model;
   out.set_force_layer(forceLayer_);
+  out.set_min_force_layer(model.pairs.empty() ? 0 : model.minForceLayer());
   out.set_max_force_layer(model.pairs.empty() ? 0 : model.maxForceLayer());
   out.set_voxel_size_m(session_->voxelSizeM);
   out.set_point_spacing_m(session_->pointSpacingM);

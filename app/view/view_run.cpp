@@ -350,6 +350,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       const pb::Parameters& p = *state.parameters;
       model.voxelSizeM = p.voxel_size_m();
       model.forceLayer = static_cast<int>(p.force_layer());
+      model.forceLayerMin = static_cast<int>(p.min_force_layer());
       model.forceLayerMax = static_cast<int>(p.max_force_layer());
       model.pointOffsetM = p.point_offset_m();
       model.pointOffsetMaxM = 2.0 * p.point_spacing_m();

@@ -185,7 +185,7 @@ def check_subscribe(c):
 
 def check_set_parameters(c):
     p = c.request("set_parameters", pb.SetParameters(), expect="parameters")  # nothing set: no change
-    check(1 <= p.force_layer <= p.max_force_layer, f"set_parameters: force layer in range {p}")
+    check(1 <= p.min_force_layer <= p.force_layer <= p.max_force_layer, f"set_parameters: force layer in range {p}")
     check(p.coupling_stiffness_share == 1.0 and p.coupling_damping_ratio == 1.0, f"default coupling {p}")
     check(len(p.coupling) == 1 and p.coupling[0].linear_stiffness_n_per_m > 0, f"coupling gains {p}")
     p3 = c.request("set_parameters", pb.SetParameters(force_layer=3), expect="parameters")

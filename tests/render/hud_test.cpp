@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,7 +71,8 @@ HudModel sampleModel() {
   model.periodMaxS = 0.002;
   model.overruns = 3;
   model.voxelSizeM = 0.001;
-  model.forceLayer = 0;
+  model.forceLayer = 4;
+  model.forceLayerMin = 3;
   model.forceLayerMax = 8;
   model.pointOffsetM = 0.0005;
   model.pointOffsetMaxM = 0.002;
@@ -286,7 +288,7 @@ TEST_F(HudTest, AnObjectHeldByAnotherPeerCannotBeGrabbed) {
 
 TEST_F(HudTest, SliderEditIsReportedOnceWhenReleased) {
   Hud hud(window_);
-  const HudModel model = sampleModel();  // force layer 0 of 8
+  const HudModel model = sampleModel();  // force layer 4 of 3 to 8
   settle(hud, model);
   ASSERT_TRUE(hud.layout().forceLayerSlider);
   const HudRectPx slider = *hud.layout().forceLayerSlider;
@@ -314,6 +316,29 @@ TEST_F(HudTest, SliderEditIsReportedOnceWhenReleased) {
     EXPECT_EQ(*actions[i].forceLayer, model.forceLayerMax);
   }
   EXPECT_EQ(reports, 1);
+}
+
+// At its left end the force layer slider gives the smallest layer every pair takes (3 with
+// surface planes), not 0, which the controller refuses.
+TEST_F(HudTest, TheForceLayerSliderStopsAtTheSmallestLayerEveryPairTakes) {
+  Hud hud(window_);
+  const HudModel model = sampleModel();  // force layer 4 of 3 to 8
+  settle(hud, model);
+  ASSERT_TRUE(hud.layout().forceLayerSlider);
+  const HudRectPx slider = *hud.layout().forceLayerSlider;
+  std::optional<int> committed;
+  const auto step = [&](float xPx, bool down) {
+    HudActions a;
+    frame(hud, model, HudPointer{xPx, slider.centerY(), down}, &a);
+    if (a.forceLayer) committed = a.forceLayer;
+  };
+  // pressed at the slider's left end, held there, released
+  step(slider.minX + 1.0F, false);
+  for (int i = 0; i < 3; ++i) step(slider.minX + 1.0F, true);
+  step(slider.minX + 1.0F, false);
+  step(slider.minX + 1.0F, false);
+  ASSERT_TRUE(committed);
+  EXPECT_EQ(*committed, model.forceLayerMin);
 }
 
 TEST_F(HudTest, WantsTheMouseOnlyOverTheHud) {
