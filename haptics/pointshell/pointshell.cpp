@@ -252,9 +252,11 @@ Pointshell buildPointshell(std::span<const TriangleMesh* const> meshes,
             // an edge or vertex voxel's point on its feature, so that a feature edge is
             // sampled along its length however the lattice falls; a surface voxel's centre
             // is within half its diagonal of the surface
-            if (const auto onFeature = featureVoxels.pointOf(v, feature)) {
+            const auto onFeature = featureVoxels.pointOf(v, feature);
+            const auto featureNormal = featureVoxels.normalOf(v, feature);
+            if (onFeature && featureNormal) {
               base = *onFeature;
-              normal = featureVoxels.normalOf(v, feature).value_or(normal);
+              normal = *featureNormal;
             } else if (const auto nearest = scene.closestPoint(centre, s)) {
               base = nearest->point;
               normal = pseudoNormals.normalAt(*nearest, kFeatureTolerance * s);
