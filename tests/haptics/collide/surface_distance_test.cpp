@@ -108,7 +108,8 @@ TEST(SurfaceDistance, InASocketsCavityIsNeverAboveWhatTheOwnPlaneGives) {
     const auto q = exact.closestPoint(p, 4.0 * kVoxelM);
     if (!e || !q) continue;
     ++checked;
-    EXPECT_LE(e->nearM, std::max(e->ownM, q->distanceM) + kQuantizationM) << e->ownM << " exact " << q->distanceM << " at " << p.x << " " << p.y << " " << p.z;
+    EXPECT_LE(e->nearM, std::max(e->ownM, q->distanceM) + kQuantizationM)
+        << e->ownM << " exact " << q->distanceM << " at " << p.x << " " << p.y << " " << p.z;
   }
   EXPECT_GT(checked, 10000);
 }
