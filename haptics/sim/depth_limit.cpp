@@ -218,6 +218,37 @@ double surfaceRowScale(const DepthLimitScratch& s, std::size_t rowCount,
   return scale;
 }
 
+/// The scale of the whole step as solved that keeps every body it moves within its
+/// MaxTravel (beyond rounding: a body held to it before the projection is at it).
+double travelScale(std::span<const MovingObjectModel> objects, std::span<const Delta> deltas) {
+  constexpr double kRounding = 1e-9;
+  double scale = 1.0;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const Delta& d = deltas[i];
+    if (d.kinematic && !d.yielding) continue;
+    const double travelM = glm::length(d.linear) + glm::length(d.angular) * objects[i].shellRadiusM;
+    if (travelM > d.maxTravelM * (1.0 + kRounding)) scale = std::min(scale, d.maxTravelM / travelM);
+  }
+  return scale;
+}
+
+/// Whether scaling the steps of all but the remote bodies that do not yield keeps every
+/// limit: it does unless those remote bodies' steps alone take one past its target (a
+/// limit's gain is linear in the scale, from theirs alone to the solved step's).
+bool scalingTheRestKeepsLimits(const DepthLimitScratch& s, std::size_t count) {
+  auto streamed = [&s](int body, const glm::dvec3& linear, const glm::dvec3& angular) {
+    if (body < 0) return 0.0;
+    const Delta& d = s.deltas[static_cast<std::size_t>(body)];
+    return d.kinematic && !d.yielding ? glm::dot(linear, d.linear) + glm::dot(angular, d.angular) : 0.0;
+  };
+  for (std::size_t k = 0; k < count; ++k) {
+    const Limit& l = s.limits[k];
+    const double gain = streamed(l.bodyA, l.linearA, l.angularA) + streamed(l.bodyB, l.linearB, l.angularB);
+    if (gain > l.targetM + kToleranceOfLimit * l.limitM) return false;
+  }
+  return true;
+}
+
 /// The sweeps, then the scale of the whole step that the last pass needs.
 double solve(DepthLimitScratch& s, std::size_t count) {
   for (int iteration = 0; iteration < kIterations; ++iteration) sweep(s, count);
@@ -261,17 +292,25 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
     frame.rowLimits += static_cast<std::uint32_t>(added);
     scale = solve(s, count);
   }
-  // the rows still past their own limits beyond the residual (more of them than there is room for)
-  scale = std::min(scale, surfaceRowScale(s, rowCount, before));
+  // the rows still past their own limits beyond the residual (more of them than there is
+  // room for), and the bodies the corrections would carry past their MaxTravel
+  const double limitsScale = std::min(scale, surfaceRowScale(s, rowCount, before));
+  double travel = travelScale(objects, s.deltas);
+  scale = std::min(limitsScale, travel);
   if (frame.binding == 0 && frame.rowLimits == 0 && scale == 1.0) return frame;
-  if (scale < 1.0 &&
-      std::any_of(s.deltas.begin(), s.deltas.end(), [](const Delta& d) { return d.kinematic; })) {
-    // a local part trapped against a remote one: the remote one yields too
+  const bool remote =
+      std::any_of(s.deltas.begin(), s.deltas.end(), [](const Delta& d) { return d.kinematic; });
+  if (remote && (limitsScale < 1.0 || (travel < 1.0 && !scalingTheRestKeepsLimits(s, count)))) {
+    // a local part trapped against a remote one, or pushed by it faster than it can give
+    // way: the remote one yields too
     for (Delta& d : s.deltas) d.yielding = d.kinematic;
     setUp(objects, before, after, s, count, true);
-    scale = std::min(solve(s, count), surfaceRowScale(s, rowCount, before));
+    scale = solve(s, count);
+    travel = travelScale(objects, s.deltas);
+    scale = std::min({scale, surfaceRowScale(s, rowCount, before), travel});
   }
   frame.scale = scale;
+  frame.travelBound = travel < 1.0 && scale == travel;
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
     Delta& d = s.deltas[i];

@@ -331,7 +331,7 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     const double bound = ws.travelBoundM[i];
     f.maxTravelM = std::isinf(bound) ? bound : plan.travelScale * bound;
     f.travelLimited = limitTravel(ws.beforeStep[i], body, object.shellRadiusM, f.maxTravelM);
-    ws.counters.travelLimitedFrames += f.travelLimited ? 1 : 0;
+    ws.depthScratch.deltas[i].maxTravelM = f.maxTravelM;
   }
   outputs.depthLimit =
       limitDepths(model.objects, ws.beforeStep, state.bodies, ws.depthScratch, rowCount, model.dtS);
@@ -345,12 +345,10 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     f.contactForceWorld -= body.massKg * perH2 * refused.refusedLinear;
     const glm::dmat3 r = glm::mat3_cast(ws.beforeStep[i].orientation);
     f.contactTorqueWorld -= perH2 * (r * (body.inertiaBody * (glm::transpose(r) * refused.refusedAngular)));
-    // the projection moves points of the body by no more than it refused, but lever arms
-    // could carry a far point past MaxTravel: hold it to MaxTravel again (a scaled step
-    // still keeps every depth limit, depth_limit.h)
-    f.travelLimited =
-        limitTravel(ws.beforeStep[i], state.bodies[i], model.objects[i].shellRadiusM, f.maxTravelM) ||
-        f.travelLimited;
+  }
+  for (ObjectFrame& f : outputs.objects) {
+    f.travelLimited = f.travelLimited || outputs.depthLimit.travelBound;
+    ws.counters.travelLimitedFrames += f.travelLimited ? 1 : 0;
   }
   ++state.frame;
   state.timeS = static_cast<double>(state.frame) * model.dtS;

@@ -450,5 +450,34 @@ TEST_P(NonPenetration, ARemotePartDrivenDownThroughALocalOneOnAPlate) {
   }
 }
 
+/// A local bar 200 × 10 × 10 mm along x, nothing static, and a remote peer's 10 mm box
+/// 2.5 mm over the bar's end.
+Scene remoteBoxOverALongBarsEnd() {
+  Scene scene;
+  scene.objects.push_back(test::meshObject("bar", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m, at(0.0, 0.0, 0.0), glm::dvec3(0.1, 0.005, 0.005));
+  }));
+  scene.objects.push_back(test::meshObject("remote", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m, at(0.092, 0.0, 0.0125), glm::dvec3(0.005, 0.005, 0.005));
+  }));
+  return scene;
+}
+
+TEST_P(NonPenetration, ARemotePartCatchingUpWithItsStreamPushesALongBarsEnd) {
+  for (const double voxelM : kVoxelsM) {
+    // the remote part's stream jumps 20 mm down into the bar's end (its peer stalled, or
+    // this one did); the remote part catches up at its MaxTravel a frame. The bar's user
+    // pulls it along its length: it must give way by turning about its middle, where
+    // every point but the pushed one moves further than the push
+    Case c{remoteBoxOverALongBarsEnd(),
+           {"bar", "remote"},
+           {ramp(moved(-0.02, 0.0, 0.0), 0.4),
+            [](double t) { return t < 0.05 ? Pose{} : moved(0.0, 0.0, -0.02); }},
+           voxelM};
+    c.remote = {false, true};
+    expectWithinBound("a remote part catching up pushes a bar's end", c);
+  }
+}
+
 }  // namespace
 }  // namespace voxhap
