@@ -1,0 +1,68 @@
+#include "haptics/dynamics/shared_coupling.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "haptics/dynamics/pose.h"
+
+namespace voxhap {
+namespace {
+
+bool usable(const RigidBodyState& s) {
+  return isFinite(s.comWorld) && isFinite(s.orientation) && isFinite(s.linearVelocityWorld) &&
+         isFinite(s.angularVelocityWorld) && std::abs(glm::length(s.orientation) - 1.0) < 1e-6;
+}
+
+}  // namespace
+
+double delayWeight(double delayS) noexcept {
+  if (std::isnan(delayS)) return 0.0;
+  return std::clamp(1.0 - delayS / kSharedCouplingFadeDelayS, 0.0, 1.0);
+}
+
+SharedCoupling sharedCouplingWrench(const CouplingGains& stiffest, const RigidBodyModel& model,
+                                    const RigidBodyState& local,
+                                    std::span<const RemoteInstance> remotes) noexcept {
+  SharedCoupling out;
+  double weightSum = 0.0;
+  double squareSum = 0.0;
+  glm::dvec3 com{0.0}, linear{0.0}, angular{0.0};
+  glm::dquat orientation(0.0, 0.0, 0.0, 0.0);
+  for (const RemoteInstance& r : remotes) {
+    const double w = delayWeight(r.delayS);
+    if (w == 0.0 || !usable(r.state)) continue;
+    weightSum += w;
+    squareSum += w * w;
+    com += w * r.state.comWorld;
+    linear += w * r.state.linearVelocityWorld;
+    angular += w * r.state.angularVelocityWorld;
+    // q and −q are one orientation: take the one on the local instance's side
+    const double side = glm::dot(r.state.orientation, local.orientation) < 0.0 ? -w : w;
+    orientation = orientation + side * r.state.orientation;
+  }
+  const double orientationLength = glm::length(orientation);
+  if (weightSum == 0.0 || !(orientationLength > 0.0)) return out;  // (opposite turns cancel)
+
+  out.stiffnessShare = squareSum / weightSum;
+  out.target.comWorld = com / weightSum;
+  out.target.orientation = orientation / orientationLength;
+  out.target.linearVelocityWorld = linear / weightSum;
+  out.target.angularVelocityWorld = angular / weightSum;
+
+  const double s = out.stiffnessShare;
+  const double d = std::sqrt(s);
+  const CouplingGains gains{s * stiffest.linearStiffnessNPerM, d * stiffest.linearDampingNsPerM,
+                            s * stiffest.angularStiffnessNmPerRad, d * stiffest.angularDampingNmsPerRad};
+  // couplingWrench takes the target's local origin and its velocity
+  const glm::dvec3 leverWorld = out.target.orientation * model.comLocal;
+  const glm::dvec3 originVelocityWorld =
+      out.target.linearVelocityWorld - glm::cross(out.target.angularVelocityWorld, leverWorld);
+  out.onLocal = couplingWrench(gains, out.target.pose(model), originVelocityWorld,
+                               out.target.angularVelocityWorld, model, local);
+  return out;
+}
+
+}  // namespace voxhap
