@@ -177,12 +177,14 @@ nlohmann::ordered_json peerJson(const net::PeerSession& peer, const controller::
   const net::PeerSessionCounts& c = peer.counts();
   nlohmann::ordered_json members = nlohmann::ordered_json::array();
   for (const net::MemberView& m : peer.members()) {
-    members.push_back({{"peer", m.peer},
-                       {"endpoint", m.endpoint},
-                       {"name", m.name},
-                       {"rtt_ms", m.rttMs < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(m.rttMs)},
-                       {"bytes_in", m.bytesIn},
-                       {"bytes_out", m.bytesOut}});
+    members.push_back(
+        {{"peer", m.peer},
+         {"endpoint", m.endpoint},
+         {"name", m.name},
+         {"rtt_ms", m.rttMs < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(m.rttMs)},
+         {"one_way_ms", m.oneWayMs < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(m.oneWayMs)},
+         {"bytes_in", m.bytesIn},
+         {"bytes_out", m.bytesOut}});
   }
   nlohmann::ordered_json opened;
   static constexpr const char* kResults[] = {"opened",   "bad_size", "not_ours", "no_window",

@@ -20,8 +20,6 @@ constexpr double kKeepSnapshotS = 30.0;
 constexpr std::size_t kChunkBytes = 1000;
 /// How often a joiner repeats an unanswered request.
 constexpr auto kRetry = std::chrono::milliseconds(200);
-/// The weight of a new round-trip sample in the filtered one.
-constexpr double kRttWeight = 0.1;
 /// A state's send time past this is no monotonic clock (2⁵³ µs is 285 years of uptime; a
 /// double holds every µs up to it).
 constexpr std::int64_t kLatestSentUs = std::int64_t{1} << 53;
@@ -254,8 +252,7 @@ void PeerSession::onState(PeerId from, const DatagramHeader& header, const pb::P
     if (echo.peer() != self_) continue;
     const std::uint32_t roundUs = nowUs32() - echo.their_sent_us() - echo.held_us();
     if (roundUs > 10'000'000) continue;  // a wrapped or nonsensical echo
-    const double ms = 1e-3 * roundUs;
-    m->rttMs = m->rttMs < 0.0 ? ms : (1.0 - kRttWeight) * m->rttMs + kRttWeight * ms;
+    m->delay.addRoundTrip(1e-3 * roundUs);
   }
   m->owns = {state.owns().begin(), state.owns().end()};
   m->wants = {state.wants().begin(), state.wants().end()};
@@ -561,8 +558,8 @@ std::vector<MemberView> PeerSession::members() const {
   std::vector<MemberView> out;
   const Clock::time_point now = Clock::now();
   for (const auto& [id, m] : members_) {
-    out.push_back(
-        {id, text(m.endpoint), m.name, m.rttMs, secondsBetween(m.heard, now), m.bytesIn, m.bytesOut});
+    out.push_back({id, text(m.endpoint), m.name, m.delay.roundTripMs(), m.delay.oneWayMs(),
+                   secondsBetween(m.heard, now), m.bytesIn, m.bytesOut});
   }
   return out;
 }

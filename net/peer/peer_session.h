@@ -33,6 +33,7 @@
 #include "haptics/dynamics/rigid_body.h"
 #include "haptics/sim/sim_state.h"
 #include "net/peer/datagram.h"
+#include "net/peer/one_way_delay.h"
 #include "net/peer/session_key.h"
 #include "net/proto/peer.pb.h"
 
@@ -82,7 +83,8 @@ struct MemberView {
   PeerId peer = kNoPeer;
   std::string endpoint;
   std::string name;
-  double rttMs = -1.0;  ///< filtered round trip, < 0: not measured yet
+  double rttMs = -1.0;     ///< filtered round trip, < 0: not measured yet
+  double oneWayMs = -1.0;  ///< one-way delay as reported (OneWayDelay), < 0: not measured yet
   double sinceHeardS = 0.0;
   std::uint64_t bytesIn = 0;
   std::uint64_t bytesOut = 0;
@@ -141,7 +143,7 @@ private:
     std::uint32_t theirSentUs = 0;  ///< header send time of their newest datagram
     Clock::time_point theirSentAt{};
     bool heardDirectly = false;
-    double rttMs = -1.0;
+    OneWayDelay delay;
     std::uint64_t bytesIn = 0, bytesOut = 0;
   };
   struct Snapshot {

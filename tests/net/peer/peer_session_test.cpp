@@ -114,6 +114,7 @@ TEST(PeerSession, AJoinerGetsTheWholeSnapshotAndEveryMemberLearnsOfEveryOther) {
     ASSERT_EQ(members.size(), 2u) << p->session->self();
     for (const MemberView& m : members) {
       EXPECT_GT(m.rttMs, 0.0);
+      EXPECT_GT(m.oneWayMs, 0.0);
       EXPECT_FALSE(m.name.empty());
       EXPECT_GT(m.bytesIn, 0u);
     }
