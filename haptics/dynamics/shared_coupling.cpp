@@ -24,8 +24,8 @@ double delayWeight(double delayS) noexcept {
 }
 
 SharedCoupling sharedCouplingWrench(const CouplingGains& stiffest, const RigidBodyModel& model,
-                                    const RigidBodyState& local,
-                                    std::span<const RemoteInstance> remotes) noexcept {
+                                    const RigidBodyState& local, std::span<const RemoteInstance> remotes,
+                                    const DivergenceBound& bound, bool wasDivergent) noexcept {
   SharedCoupling out;
   double weightSum = 0.0;
   double squareSum = 0.0;
@@ -52,16 +52,31 @@ SharedCoupling sharedCouplingWrench(const CouplingGains& stiffest, const RigidBo
   out.target.linearVelocityWorld = linear / weightSum;
   out.target.angularVelocityWorld = angular / weightSum;
 
+  const glm::dvec3 apartM = out.target.comWorld - local.comWorld;
+  const glm::dvec3 apartRad = rotationVector(out.target.orientation * glm::conjugate(local.orientation));
+  out.apartM = glm::length(apartM);
+  out.apartRad = glm::length(apartRad);
+  const double share = wasDivergent ? 0.5 : 1.0;  // hysteresis
+  out.divergent = out.apartM > share * bound.distanceM || out.apartRad > share * bound.angleRad;
+  // the spring's target, no further from the local instance than the bound
+  RigidBodyState spring = out.target;
+  if (out.apartM > bound.distanceM)
+    spring.comWorld = local.comWorld + apartM * (bound.distanceM / out.apartM);
+  if (out.apartRad > bound.angleRad) {
+    spring.orientation =
+        quatFromRotationVector(apartRad * (bound.angleRad / out.apartRad)) * local.orientation;
+  }
+
   const double s = out.stiffnessShare;
   const double d = std::sqrt(s);
   const CouplingGains gains{s * stiffest.linearStiffnessNPerM, d * stiffest.linearDampingNsPerM,
                             s * stiffest.angularStiffnessNmPerRad, d * stiffest.angularDampingNmsPerRad};
   // couplingWrench takes the target's local origin and its velocity
-  const glm::dvec3 leverWorld = out.target.orientation * model.comLocal;
+  const glm::dvec3 leverWorld = spring.orientation * model.comLocal;
   const glm::dvec3 originVelocityWorld =
-      out.target.linearVelocityWorld - glm::cross(out.target.angularVelocityWorld, leverWorld);
-  out.onLocal = couplingWrench(gains, out.target.pose(model), originVelocityWorld,
-                               out.target.angularVelocityWorld, model, local);
+      spring.linearVelocityWorld - glm::cross(spring.angularVelocityWorld, leverWorld);
+  out.onLocal = couplingWrench(gains, spring.pose(model), originVelocityWorld, spring.angularVelocityWorld,
+                               model, local);
   return out;
 }
 

@@ -27,6 +27,14 @@
 /// 2 ms; at 100 ms it is 5 rad/s. The stiffness that τ allows falls as 1/τ², so the
 /// paper's linear fade weakens the loop but does not make it stable by itself.
 ///
+/// Divergence (paper §6.1: something, a thin wall, trapped between the instances): the
+/// local instance is divergent when it is further than a bound from the remote instances'
+/// average, in distance or in angle, and stays so until it is back within half of it. The
+/// spring never sees more than the bound's stretch, so that as a wall holds the instances
+/// apart the coupling does not press harder on it (the depth limits keep the wall whole
+/// anyway), and when the wall goes they close at the bounded pull, not with the energy of
+/// a spring stretched by the whole gap. The pull is continuous at the bound: no step.
+///
 /// Per frame: noexcept, allocation-free.
 
 #include <span>
@@ -48,18 +56,30 @@ struct RemoteInstance {
 /// w = max(0, 1 − τ/kSharedCouplingFadeDelayS); 1 for a negative delay, 0 for a NaN.
 double delayWeight(double delayS) noexcept;
 
+/// How far the local instance may be from the remote instances' average before it is
+/// divergent (see the file comment).
+struct DivergenceBound {
+  double distanceM = 0.01;  ///< of the centres of mass, m
+  double angleRad = 0.1;
+};
+
 /// The coupling on the local instance this frame.
 struct SharedCoupling {
   CouplingWrench onLocal;       ///< force at the centre of mass, torque about it
   double stiffnessShare = 0.0;  ///< s = Σw²/Σw (0: no remote instance counts)
   RigidBodyState target;        ///< the remote instances' weighted average (meaningful when s > 0)
+  double apartM = 0.0;          ///< from the local centre of mass to the target's, m
+  double apartRad = 0.0;        ///< from the local orientation to the target's
+  bool divergent = false;       ///< (see the file comment); false when no remote instance counts
 };
 
 /// The wrench that joins `local` (an instance of the object `model`) to `remotes` with the
-/// gains `stiffest` (k₀, b₀) scaled as the file comment says. Remote instances whose state
-/// is not finite, or whose orientation is not a unit quaternion, do not count.
+/// gains `stiffest` (k₀, b₀) scaled, its spring's stretch held to `bound`, as the file
+/// comment says; `wasDivergent`: the last frame's SharedCoupling::divergent. Remote
+/// instances whose state is not finite, or whose orientation is not a unit quaternion, do
+/// not count.
 SharedCoupling sharedCouplingWrench(const CouplingGains& stiffest, const RigidBodyModel& model,
-                                    const RigidBodyState& local,
-                                    std::span<const RemoteInstance> remotes) noexcept;
+                                    const RigidBodyState& local, std::span<const RemoteInstance> remotes,
+                                    const DivergenceBound& bound = {}, bool wasDivergent = false) noexcept;
 
 }  // namespace voxhap

@@ -135,6 +135,61 @@ TEST(SharedCoupling, AnInstanceWhoseStreamStopsFadesOutWithoutAStep) {
   EXPECT_LT(largestStepN, 0.01 * changeN);
 }
 
+TEST(SharedCoupling, InstancesFurtherApartThanTheBoundAreDivergentUntilBackWithinHalfOfIt) {
+  const RigidBodyModel model = offsetBoxModel(1.0);
+  const CouplingGains gains = defaultCouplingGains(model, kDtS);
+  const DivergenceBound bound{0.01, 0.1};
+  auto at = [&](double xM, double turnRad, bool was) {
+    const std::vector<RemoteInstance> remote = {
+        {instance(model, glm::dvec3(xM, 0.0, 0.0), glm::dvec3(0.0, 0.0, turnRad)), 0.0}};
+    return sharedCouplingWrench(gains, model, instance(model), remote, bound, was);
+  };
+  // a wall 30 mm thick between them: divergent, and the spring pulls as at the bound, no harder
+  const SharedCoupling wall = at(0.03, 0.0, false);
+  EXPECT_TRUE(wall.divergent);
+  EXPECT_NEAR(wall.apartM, 0.03, 1e-12);
+  EXPECT_NEAR(wall.onLocal.forceWorld.x, gains.linearStiffnessNPerM * 0.01, 1e-9);
+  // at the bound the pull is the same: no step as they pass it
+  EXPECT_NEAR(at(0.01, 0.0, false).onLocal.forceWorld.x, wall.onLocal.forceWorld.x, 1e-9);
+  EXPECT_FALSE(at(0.009, 0.0, false).divergent);
+  EXPECT_TRUE(at(0.009, 0.0, true).divergent);  // coming back: still, until within half
+  EXPECT_FALSE(at(0.0049, 0.0, true).divergent);
+  // turned apart: the same in angle
+  const SharedCoupling turned = at(0.0, 0.3, false);
+  EXPECT_TRUE(turned.divergent);
+  EXPECT_NEAR(turned.onLocal.torqueWorld.z, gains.angularStiffnessNmPerRad * 0.1, 1e-9);
+  EXPECT_TRUE(at(0.0, 0.06, true).divergent);
+  EXPECT_FALSE(at(0.0, 0.04, true).divergent);
+}
+
+TEST(SharedCoupling, WhenTheWallGoesTheInstancesCloseWithNoMoreThanTheBoundsPull) {
+  // two free instances held 50 mm apart (by a wall), then free: they meet, and no force
+  // along the way is more than the bound's pull and its damping
+  const RigidBodyModel model = offsetBoxModel(1.0);
+  const CouplingGains gains = defaultCouplingGains(model, kDtS);
+  std::array<RigidBodyState, 2> bodies = {instance(model), instance(model, glm::dvec3(0.05, 0.0, 0.0))};
+  double strongestN = 0.0;
+  bool divergentAtFirst = false;
+  std::array<bool, 2> divergent{};
+  for (int frame = 0; frame < 3000; ++frame) {
+    std::array<SharedCoupling, 2> c{};
+    for (std::size_t i = 0; i < 2; ++i) {
+      const std::vector<RemoteInstance> other = {{bodies[1 - i], 0.0}};
+      c[i] = sharedCouplingWrench(gains, model, bodies[i], other, {}, divergent[i]);
+      divergent[i] = c[i].divergent;
+      strongestN = std::max(strongestN, glm::length(c[i].onLocal.forceWorld));
+    }
+    if (frame == 0) divergentAtFirst = divergent[0] && divergent[1];
+    for (std::size_t i = 0; i < 2; ++i)
+      integrate(model, bodies[i], c[i].onLocal.forceWorld, c[i].onLocal.torqueWorld, kDtS);
+  }
+  EXPECT_TRUE(divergentAtFirst);
+  EXPECT_FALSE(divergent[0] || divergent[1]);
+  EXPECT_LT(glm::length(bodies[1].comWorld - bodies[0].comWorld), 1e-6);
+  // the spring alone at 50 mm would pull 5 times as hard as at the bound
+  EXPECT_LT(strongestN, 1.5 * gains.linearStiffnessNPerM * 0.01);
+}
+
 /// Two free instances integrated at 1 kHz, 5 mm apart at first, each coupled to the
 /// other's state as it arrives: sent at 100 Hz, `delayS` late. Returns how far apart they
 /// are after `seconds`, m.
