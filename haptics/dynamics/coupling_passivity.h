@@ -1,8 +1,8 @@
 #pragma once
 /// Time-domain passivity of a shared object's coupling (issue 14; Hannaford and Ryu,
 /// "Time-domain passivity control of haptic interfaces", IEEE TRA 2002; for ports joined
-/// by a delayed network, Ryu, Artigas and Preusche, "A passivity-based controller for
-/// bilateral teleoperation with time-varying delays", 2010).
+/// by a delayed network, Artigas, Ryu, Preusche and Hirzinger, "Network representation and
+/// passivity of delayed teleoperation systems", IROS 2011).
 ///
 /// Every sharing peer's coupling (shared_coupling.h) is one port of one network: the
 /// springs and dampers of all the peers and the delays between them. Energy flows in at a
@@ -15,13 +15,14 @@
 /// with the others' E_in as last received (older is smaller: it only errs on the safe
 /// side). Summed over the N ports, Σ E_out ≤ Σ E_in: passive.
 ///
-/// In discrete time the observer charges each frame's work as it was done: the wrench
-/// times the displacement the step made (semi-implicit Euler moves by h·v', not h·v, and
-/// with a stiff coupling the difference, h²·F²/m a frame, is what feeds a delayed loop). The
-/// controller scales the coupling's wrench on the instance by the largest c ≤ 1 whose
-/// predicted work, c·h·(F·v + τ·ω) + c²·h²·(F·F/m + τ·I⁻¹·τ) (the wrench's own share of
-/// the new velocity), fits what the observer allows; what it takes away is counted as
-/// dissipated.
+/// In discrete time (which leaks energy of its own: Jazayeri and Tavakoli, "A passivity
+/// criterion for sampled-data bilateral teleoperation systems", WHC 2011) the observer
+/// charges each frame's work as it was done: the wrench times the displacement the step
+/// made. Semi-implicit Euler moves by h·v', not h·v, and with a stiff coupling the
+/// difference, h²·F²/m a frame, is what feeds a delayed loop. The controller scales the
+/// coupling's wrench on the instance by the largest c ≤ 1 whose predicted work,
+/// c·h·(F·v + τ·ω) + c²·h²·(F·F/m + τ·I⁻¹·τ) (the wrench's own share of the new
+/// velocity), fits what the observer allows; what it takes away is counted as dissipated.
 ///
 /// The price: energy a spring stores only because the remote instance moved (the delay's
 /// doing) is not given back. Two instances apart with no input since (put apart by a jump,
