@@ -22,7 +22,9 @@ CouplingWrench CouplingPassivity::passive(const CouplingWrench& onLocal, const R
   }
   if (ports < 2 || !(dtS > 0.0) || !std::isfinite(othersInJ)) return onLocal;
   const double shareJ = (inJ_ + std::max(othersInJ, 0.0)) / static_cast<double>(ports);
-  observedJ_ = shareJ - outJ_;
+  // what is left of the share fades: energy put in long ago is not given back now
+  forgottenJ_ += std::max(shareJ - outJ_ - forgottenJ_, 0.0) * std::min(1.0, dtS / kForgetS);
+  observedJ_ = shareJ - outJ_ - forgottenJ_;
 
   // the work this frame's wrench would do, c·a + c²·b when scaled by c
   const glm::dvec3 turnPerImpulse = inverseInertiaWorld(model, local.orientation) * onLocal.torqueWorld;
