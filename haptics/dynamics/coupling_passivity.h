@@ -60,7 +60,10 @@ public:
   double inJ() const noexcept { return inJ_; }                  ///< in at this port so far, J
   double outJ() const noexcept { return outJ_; }                ///< out at this port so far, J
   double dissipatedJ() const noexcept { return dissipatedJ_; }  ///< by the controller so far, J
-  /// The observer after the last frame, J (≥ 0 up to rounding).
+  /// The observer before this frame's output, J: ≥ 0 up to rounding when only the
+  /// coupling moves the instance; other forces that move it along the wrench do more work
+  /// than predicted and can take it below, and then the port gives nothing out until
+  /// input covers the debt.
   double observedJ() const noexcept { return observedJ_; }
 
 private:
