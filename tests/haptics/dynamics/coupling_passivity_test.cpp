@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
-#include <deque>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "haptics/dynamics/shared_coupling.h"
+#include "support/delayed_stream.h"
 #include "support/rigid_body_fixtures.h"
 
 namespace voxhap {
@@ -80,24 +80,17 @@ PairRun runPair(double delayS, bool passive, double seconds) {
   const CouplingGains gains = defaultCouplingGains(model, kDtS);
   std::array<RigidBodyState, 2> bodies = {restingState(model), restingState(model)};
   std::array<CouplingPassivity, 2> ports;
-  struct Sent {
-    int frame;
-    RigidBodyState state;
-    double inJ;
-  };
-  std::array<std::deque<Sent>, 2> sent;
-  std::array<bool, 2> divergent{};
   const int delayFrames = static_cast<int>(std::lround(delayS / kDtS));
+  std::array<test::DelayedStream, 2> streams = {test::DelayedStream(delayFrames),
+                                                test::DelayedStream(delayFrames)};
+  std::array<bool, 2> divergent{};
   const int releaseFrame = 1000;
   PairRun run;
   for (int frame = 0; frame < static_cast<int>(std::lround(seconds / kDtS)); ++frame) {
-    for (std::size_t i = 0; i < 2; ++i)
-      if (frame % 10 == 0) sent[i].push_back({frame, bodies[i], ports[i].inJ()});
+    for (std::size_t i = 0; i < 2; ++i) streams[i].send(frame, bodies[i], ports[i].inJ());
     std::array<CouplingWrench, 2> wrench{};
     for (std::size_t i = 0; i < 2; ++i) {
-      const Sent* newest = nullptr;
-      for (const Sent& s : sent[1 - i])
-        if (s.frame + delayFrames <= frame) newest = &s;
+      const test::DelayedStream::Sent* newest = streams[1 - i].newest(frame);
       if (newest == nullptr) continue;
       const std::vector<RemoteInstance> remote = {{newest->state, (frame - newest->frame) * kDtS}};
       const SharedCoupling c = sharedCouplingWrench(gains, model, bodies[i], remote, {}, divergent[i]);

@@ -3,13 +3,13 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <limits>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "support/delayed_stream.h"
 #include "support/rigid_body_fixtures.h"
 
 namespace voxhap {
@@ -191,27 +191,23 @@ TEST(SharedCoupling, WhenTheWallGoesTheInstancesCloseWithNoMoreThanTheBoundsPull
 }
 
 /// Two free instances integrated at 1 kHz, 5 mm apart at first, each coupled to the
-/// other's state as it arrives: sent at 100 Hz, `delayS` late. Returns how far apart they
+/// other's state as it arrives (DelayedStream). Returns how far apart they
 /// are after `seconds`, m.
 double distanceApartM(const CouplingGains& shared, double delayS, double seconds) {
   const RigidBodyModel model = offsetBoxModel(1.0);
   std::array<RigidBodyState, 2> bodies = {restingState(model), instance(model, glm::dvec3(0.005, 0.0, 0.0))};
-  // what each has sent: (sent at frame, state)
-  std::array<std::deque<std::pair<int, RigidBodyState>>, 2> sent;
   const int delayFrames = static_cast<int>(std::lround(delayS / kDtS));
+  std::array<test::DelayedStream, 2> streams = {test::DelayedStream(delayFrames),
+                                                test::DelayedStream(delayFrames)};
   const int frames = static_cast<int>(std::lround(seconds / kDtS));
   for (int frame = 0; frame < frames; ++frame) {
-    for (std::size_t i = 0; i < 2; ++i) {
-      if (frame % 10 == 0) sent[i].push_back({frame, bodies[i]});
-    }
+    for (std::size_t i = 0; i < 2; ++i) streams[i].send(frame, bodies[i]);
     std::array<SharedCoupling, 2> coupling{};
     for (std::size_t i = 0; i < 2; ++i) {
       // the other's newest state that has arrived, as old as it is
-      const std::pair<int, RigidBodyState>* newest = nullptr;
-      for (const auto& s : sent[1 - i])
-        if (s.first + delayFrames <= frame) newest = &s;
+      const test::DelayedStream::Sent* newest = streams[1 - i].newest(frame);
       if (newest == nullptr) continue;
-      const std::vector<RemoteInstance> remote = {{newest->second, (frame - newest->first) * kDtS}};
+      const std::vector<RemoteInstance> remote = {{newest->state, (frame - newest->frame) * kDtS}};
       coupling[i] = sharedCouplingWrench(shared, model, bodies[i], remote);
     }
     for (std::size_t i = 0; i < 2; ++i)

@@ -11,7 +11,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -20,6 +19,7 @@
 #include "haptics/dynamics/coupling_passivity.h"
 #include "haptics/dynamics/shared_coupling.h"
 #include "support/contact_scenes.h"
+#include "support/delayed_stream.h"
 
 namespace voxhap {
 namespace {
@@ -54,23 +54,15 @@ SharedRun runShared(const SimModel& model, const CouplingGains& gains, double de
   std::array<LocalSimulation, 2> sims = {LocalSimulation(model), LocalSimulation(model)};
   std::array<CouplingPassivity, 2> ports;
   std::array<bool, 2> divergent{};
-  struct Sent {
-    int frame;
-    RigidBodyState state;
-    double inJ;
-  };
-  std::array<std::deque<Sent>, 2> sent;
   const int delayFrames = static_cast<int>(std::lround(delayS / dtS));
+  std::array<test::DelayedStream, 2> streams = {test::DelayedStream(delayFrames),
+                                                test::DelayedStream(delayFrames)};
   SharedRun run;
   for (int frame = 0; frame < kFrames; ++frame) {
-    for (std::size_t i = 0; i < 2; ++i) {
-      if (frame % 10 == 0) sent[i].push_back({frame, sims[i].state.bodies[0], ports[i].inJ()});
-    }
+    for (std::size_t i = 0; i < 2; ++i) streams[i].send(frame, sims[i].state.bodies[0], ports[i].inJ());
     std::array<ExternalWrench, 2> wrench{};
     for (std::size_t i = 0; i < 2; ++i) {
-      const Sent* newest = nullptr;
-      for (const Sent& s : sent[1 - i])
-        if (s.frame + delayFrames <= frame) newest = &s;
+      const test::DelayedStream::Sent* newest = streams[1 - i].newest(frame);
       if (newest == nullptr) continue;
       const RigidBodyState& local = sims[i].state.bodies[0];
       const std::vector<RemoteInstance> remote = {{newest->state, (frame - newest->frame) * dtS}};
