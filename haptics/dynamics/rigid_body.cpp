@@ -32,6 +32,10 @@ glm::dvec3 rotated(const glm::dmat3& r, const glm::dmat3& bodyMatrix, const glm:
 
 }  // namespace
 
+bool isFiniteWithUnitOrientation(const RigidBodyState& s) noexcept {
+  return finite(s) && std::abs(glm::length(s.orientation) - 1.0) < 1e-6;
+}
+
 glm::dvec3 symmetricEigenvalues(const glm::dmat3& a) noexcept {
   // closed form for a symmetric 3×3 matrix (O. K. Smith, CACM 4(4), 1961)
   const double a00 = a[0][0], a11 = a[1][1], a22 = a[2][2];

@@ -55,6 +55,10 @@ struct RigidBodyState {
   Pose pose(const RigidBodyModel& model) const noexcept;
 };
 
+/// Whether every component of `s` is finite and its orientation a unit quaternion (within
+/// 1e-6): a state a body may be put in from outside (a remote peer's stream).
+bool isFiniteWithUnitOrientation(const RigidBodyState& s) noexcept;
+
 /// A body at rest whose local→world pose is `poseWorld` (identity: as loaded).
 RigidBodyState restingState(const RigidBodyModel& model, const Pose& poseWorld = {}) noexcept;
 

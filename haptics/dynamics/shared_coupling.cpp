@@ -9,15 +9,6 @@
 #include "haptics/dynamics/pose.h"
 
 namespace voxhap {
-namespace {
-
-bool usable(const RigidBodyState& s) {
-  return isFinite(s.comWorld) && isFinite(s.orientation) && isFinite(s.linearVelocityWorld) &&
-         isFinite(s.angularVelocityWorld) && std::abs(glm::length(s.orientation) - 1.0) < 1e-6;
-}
-
-}  // namespace
-
 double delayWeight(double delayS) noexcept {
   if (std::isnan(delayS)) return 0.0;
   return std::clamp(1.0 - delayS / kSharedCouplingFadeDelayS, 0.0, 1.0);
@@ -33,7 +24,7 @@ SharedCoupling sharedCouplingWrench(const CouplingGains& stiffest, const RigidBo
   glm::dquat orientation(0.0, 0.0, 0.0, 0.0);
   for (const RemoteInstance& r : remotes) {
     const double w = delayWeight(r.delayS);
-    if (w == 0.0 || !usable(r.state)) continue;
+    if (w == 0.0 || !isFiniteWithUnitOrientation(r.state)) continue;
     weightSum += w;
     squareSum += w * w;
     com += w * r.state.comWorld;

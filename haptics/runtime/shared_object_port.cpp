@@ -46,6 +46,7 @@ const SharedObjectPort::Frame& SharedObjectPort::step(std::int64_t nowUs, const 
                                                       double dtS) noexcept {
   std::size_t n = 0;
   double othersInJ = 0.0;
+  frame_.counted = 0;
   for (Remote& r : remotes_) {
     if (r.peer == kNoPeer) continue;
     RigidBodyState state;
@@ -61,11 +62,9 @@ const SharedObjectPort::Frame& SharedObjectPort::step(std::int64_t nowUs, const 
     }
     // the delay whose weight is `weight` (shared_coupling.h)
     instances_[n++] = {state, kSharedCouplingFadeDelayS * (1.0 - weight)};
+    if (weight > 0.0) ++frame_.counted;
     othersInJ += r.inJ;
   }
-  frame_.counted = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (delayWeight(instances_[i].delayS) > 0.0) ++frame_.counted;
   frame_.coupling =
       sharedCouplingWrench(stiffest, model, local, std::span(instances_.data(), n), {}, divergent_);
   divergent_ = frame_.coupling.divergent;

@@ -185,9 +185,7 @@ void suspendOrResume(SimWorkspace& ws, bool suspend, std::chrono::steady_clock::
 /// A kinematic body goes where its target says, when the target is a finite pose with a
 /// unit orientation; otherwise it stays and the frame says so.
 void moveKinematic(const RigidBodyState& target, RigidBodyState& body, FrameStatus& status) {
-  const bool unit = std::abs(glm::length(target.orientation) - 1.0) < 1e-6;
-  if (!isFinite(target.comWorld) || !isFinite(target.linearVelocityWorld) ||
-      !isFinite(target.angularVelocityWorld) || !unit) {
+  if (!isFiniteWithUnitOrientation(target)) {
     status |= kFrameNonFiniteZeroed;
     return;
   }
