@@ -162,8 +162,7 @@ TEST_F(LandingGearCrew, ThreeUsersPullTheActuatorOutAndPressBothSparesIntoItWith
   for (const auto& [a, b] : kPairs)
     exact.push_back(
         std::make_unique<ExactPenetration>(bodies[a], bodies[b], kStaticVoxelM / kProbesPerVoxel));
-  std::array<std::array<double, 3>, 3> deepestM{};  // [peer][pair]
-  std::array<std::array<PenetrationSample, 3>, 3> deepest{};
+  std::array<std::array<PenetrationSample, 3>, 3> deepest{};  // [peer][pair]
   std::array<std::array<double, 3>, 3> deepestAtS{};
   std::array<double, 3> closestM{1.0, 1.0, 1.0};  // [pair]
   std::array<std::array<glm::dvec3, 3>, 3> first{}, last{};
@@ -182,8 +181,7 @@ TEST_F(LandingGearCrew, ThreeUsersPullTheActuatorOutAndPressBothSparesIntoItWith
     for (std::size_t p = 0; p < kPairs.size(); ++p) {
       const PenetrationSample m =
           exact[p]->measure(s.pose[kPairs[p].first], s.pose[kPairs[p].second], round % 10 == 0);
-      if (m.depthM > deepestM[s.peer][p]) {
-        deepestM[s.peer][p] = m.depthM;
+      if (m.depthM > deepest[s.peer][p].depthM) {
         deepest[s.peer][p] = m;
         deepestAtS[s.peer][p] = s.playedS;
       }
@@ -205,9 +203,9 @@ TEST_F(LandingGearCrew, ThreeUsersPullTheActuatorOutAndPressBothSparesIntoItWith
     EXPECT_LT(last[i][2].z - first[i][2].z, -0.05);
     for (std::size_t p = 0; p < kPairs.size(); ++p) {
       std::printf("[ figures  ] peer of %s: %s and %s overlap at most %.3f mm\n", kParts[i],
-                  kParts[kPairs[p].first], kParts[kPairs[p].second], deepestM[i][p] * 1e3);
+                  kParts[kPairs[p].first], kParts[kPairs[p].second], deepest[i][p].depthM * 1e3);
       const PenetrationSample& d = deepest[i][p];
-      EXPECT_LT(deepestM[i][p], 0.1 * kStaticVoxelM)
+      EXPECT_LT(d.depthM, 0.1 * kStaticVoxelM)
           << "at " << deepestAtS[i][p] << " s of its script, at (" << d.deepestWorld.x << ", "
           << d.deepestWorld.y << ", " << d.deepestWorld.z << ") m, " << d.inside << " probes inside";
     }
