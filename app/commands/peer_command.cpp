@@ -32,6 +32,8 @@ struct PeerArgs {
   std::optional<std::string> join;
   std::optional<std::string> keyFile;
   std::string take;
+  std::string share;
+  bool noPassivity = false;
   std::string device;
   std::string name;
   double streamHz = 200.0;
@@ -46,8 +48,14 @@ int runPeerCommand(const PeerArgs& args, const CommandContext& c) {
   options.moving = args.moving;
   const std::string& d = args.device;
   checkDeviceOption(d);
-  if (!d.empty() && args.take.empty()) throw UsageError("--device holds the --take OBJECT: name it");
-  if (args.passive && (!args.take.empty() || !d.empty())) throw UsageError("--passive cannot --take or hold");
+  if (!args.take.empty() && !args.share.empty())
+    throw UsageError("--take and --share: a peer either owns an object or shares one; give one of them");
+  if (!d.empty() && args.take.empty() && args.share.empty())
+    throw UsageError("--device holds the --take or --share OBJECT: name it");
+  if (args.passive && (!args.take.empty() || !args.share.empty() || !d.empty()))
+    throw UsageError("--passive cannot --take, --share or hold");
+  if (args.noPassivity && args.share.empty())
+    throw UsageError("--no-passivity is for a --share OBJECT's coupling");
   if (!(args.streamHz >= 100.0 && args.streamHz <= 1000.0))
     throw UsageError("--rate wants 100 to 1000 states per second");
   applyControllerRunArgs(args.run, c.console, options);
@@ -78,6 +86,8 @@ int runPeerCommand(const PeerArgs& args, const CommandContext& c) {
   }
   if (args.keyFile) peer.keyFile = *args.keyFile;
   peer.take = args.take;
+  peer.share = args.share;
+  peer.passivity = !args.noPassivity;
   peer.name = args.name.empty() ? (std::getenv("USER") ? std::getenv("USER") : "") : args.name;
   peer.streamHz = args.streamHz;
   if (args.timeoutS) peer.timeoutS = *args.timeoutS;
@@ -113,7 +123,8 @@ void addPeerCommand(CommandTree& tree) {
   help.summary =
       "A peer of a collaborative session: a haptic controller joined to others over UDP, and its window.";
   help.usage =
-      "voxhap peer SCENE [--listen HOST:PORT] [--join HOST:PORT --key FILE] [--take OBJECT [--device …]]\n"
+      "voxhap peer SCENE [--listen HOST:PORT] [--join HOST:PORT --key FILE]\n"
+      "       [--take OBJECT | --share OBJECT [--no-passivity]] [--device …]\n"
       "       [--move NAME]… [--advertise HOST:PORT] [--frontend HOST:PORT] [--name NAME] [--rate HZ] "
       "[--timeout SECONDS] "
       "[--passive] [--headless]\n"
@@ -126,6 +137,13 @@ void addPeerCommand(CommandTree& tree) {
       "other peer moves it as its owner's stream says, and feels its own parts collide with it\n"
       "at once. --take asks for an object (it is handed over once nobody holds it where it is);\n"
       "--device then holds it.\n\n"
+      "--share OBJECT: several users hold the same part (type-2). Each sharing peer integrates\n"
+      "its own instance of it, joined to the others' instances by a spring whose stiffness\n"
+      "falls with each one's measured one-way delay, to nothing at 1 s (paper §6.1); a\n"
+      "passivity controller takes out the energy the delay would add (--no-passivity: not).\n"
+      "A peer that begins sharing starts where the others' instance is; the peers that do not\n"
+      "share it see the lowest-numbered sharer's instance. Instances held apart (a wall between\n"
+      "them) are flagged divergent on every peer. --device then holds this peer's instance.\n\n"
       "The first peer makes the session: without --key it makes a key and prints it. The others\n"
       "join through any member with --join HOST:PORT and that key in a file (--key FILE, 64\n"
       "hexadecimal digits). Every peer must load the same SCENE with the same --move set (checked\n"
@@ -143,6 +161,8 @@ void addPeerCommand(CommandTree& tree) {
       "Examples:\n"
       "  voxhap peer landing-gear --listen 127.0.0.1:7500 --take actuator --headless\n"
       "  voxhap peer landing-gear --listen 127.0.0.1:7501 --join 127.0.0.1:7500 --key session.key\n"
+      "  voxhap peer landing-gear --join 127.0.0.1:7500 --key session.key --share actuator --device "
+      "spacemouse\n"
       "  voxhap peer ball-and-socket --move ball --take ball --device script:press.txt --headless --json";
   auto args = std::make_shared<PeerArgs>();
   CLI::App& command = tree.add(tree.root(), "peer", std::move(help),
@@ -172,7 +192,13 @@ void addPeerCommand(CommandTree& tree) {
       ->type_name("FILE");
   command.add_option("--take", args->take, "an object to ask for at once")->type_name("OBJECT");
   command
-      .add_option("--device", args->device, "hold the --take object with this device once it is this peer's")
+      .add_option("--share", args->share, "an object to share with the other peers that share it (type-2)")
+      ->type_name("OBJECT");
+  command.add_flag("--no-passivity", args->noPassivity,
+                   "the shared object's coupling without the passivity controller");
+  command
+      .add_option("--device", args->device,
+                  "hold the --take object once it is this peer's, or the --share object")
       ->type_name("script:FILE|hand:FILE|spacemouse[:PATH]");
   command.add_option("--name", args->name, "the user's name the others see (default $USER)");
   command

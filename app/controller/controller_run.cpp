@@ -165,7 +165,7 @@ std::unique_ptr<net::PeerSession> startPeer(const PeerRunOptions& peer,
 /// way this peer asks for it).
 std::string whyNotGrab(net::PeerSession& peer, const SimModel& model, std::size_t object) {
   const PeerId owner = peer.owners()[object];
-  if (owner == peer.self()) return {};
+  if (owner == peer.self() || peer.sharing(static_cast<std::uint32_t>(object))) return {};
   peer.want(static_cast<std::uint32_t>(object));
   const std::string name = "'" + model.objects[object].name + "'";
   if (owner == kNoPeer) return name + " was nobody's: this peer takes it now; grab it again in a moment";
@@ -173,7 +173,46 @@ std::string whyNotGrab(net::PeerSession& peer, const SimModel& model, std::size_
          "'s: asked for it; it comes here once nobody holds it there; grab it again then";
 }
 
-nlohmann::ordered_json peerJson(const net::PeerSession& peer, const controller::PeerLinkCounts& link) {
+/// Every object somebody shares: its sharers, who of them sees it divergent, and (when
+/// this peer is one of them) how its coupling went.
+nlohmann::ordered_json sharedJson(const net::PeerSession& peer, const controller::PeerLink& link,
+                                  const SimModel& model) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (std::uint32_t o = 0; o < model.objects.size(); ++o) {
+    const std::vector<net::SharerView> others = peer.sharers(o);
+    const bool here = static_cast<int>(o) == link.sharedObject();
+    if (others.empty() && !here) continue;
+    nlohmann::ordered_json sharers = nlohmann::ordered_json::array(),
+                           divergent = nlohmann::ordered_json::array();
+    for (const net::SharerView& v : others) {
+      sharers.push_back(v.peer);
+      if (v.divergent) divergent.push_back(v.peer);
+    }
+    nlohmann::ordered_json j = {{"object", model.objects[o].name},
+                                {"shared_here", here},
+                                {"other_sharers", sharers},
+                                {"divergent_at", divergent}};
+    if (here) {
+      const controller::SharedLinkStats& s = link.sharedStats();
+      const double coupled = static_cast<double>(std::max<std::uint64_t>(s.coupledTicks, 1));
+      j["coupling"] = {{"ticks", s.ticks},
+                       {"coupled_ticks", s.coupledTicks},
+                       {"divergent_ticks", s.divergentTicks},
+                       {"mean_apart_mm", 1e3 * s.sumApartM / coupled},
+                       {"max_apart_mm", 1e3 * s.maxApartM},
+                       {"min_observed_j", s.minObservedJ},
+                       {"in_j", s.inJ},
+                       {"dissipated_j", s.dissipatedJ},
+                       {"remote_instance_states", s.sharedStates}};
+    }
+    out.push_back(j);
+  }
+  return out;
+}
+
+nlohmann::ordered_json peerJson(const net::PeerSession& peer, const controller::PeerLink& linked,
+                                const SimModel& model) {
+  const controller::PeerLinkCounts& link = linked.counts();
   const net::PeerSessionCounts& c = peer.counts();
   nlohmann::ordered_json members = nlohmann::ordered_json::array();
   for (const net::MemberView& m : peer.members()) {
@@ -206,7 +245,8 @@ nlohmann::ordered_json peerJson(const net::PeerSession& peer, const controller::
           {"remote_states", link.remoteStates},
           {"remote_states_dropped", link.remoteStatesDropped},
           {"owner_changes", link.ownerChanges},
-          {"ticks", link.ticks}};
+          {"ticks", link.ticks},
+          {"shared", sharedJson(peer, linked, model)}};
 }
 
 }  // namespace
@@ -303,7 +343,9 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
                           "in a peer session the scene, its sizes and the force layer are every peer's"});
     link = std::make_unique<controller::PeerLink>(
         io, *peer, service,
-        controller::PeerLinkOptions{options.peer->streamHz, options.peer->take, options.device}, log);
+        controller::PeerLinkOptions{options.peer->streamHz, options.peer->take, options.device,
+                                    options.peer->share, options.peer->passivity},
+        log);
   }
   const asio::ip::tcp::endpoint listening = server->endpoint();
   console.info("listening on " + listening.address().to_string() + ":" + std::to_string(listening.port()));
@@ -359,7 +401,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
                                 {"updates_sent", c.updatesSent},
                                 {"updates_skipped", c.updatesSkipped},
                                 {"updates_unchanged", c.updatesUnchanged}};
-    if (peer) j["peer"] = peerJson(*peer, link->counts());
+    if (peer) j["peer"] = peerJson(*peer, *link, session->built->model);
     out << j.dump(2) << "\n";
     return;
   }

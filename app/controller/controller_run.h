@@ -23,9 +23,11 @@ struct PeerRunOptions {
   std::string advertise;                 ///< "HOST:PORT" the others send to; empty: the listening one
   std::string joinHost;                  ///< a member to join through; empty: the first member
   std::uint16_t joinPort = 0;
-  std::string keyFile;  ///< the session key; empty: the first member makes one and prints it
-  std::string take;     ///< an object to ask for at once; --device holds it once it is ours
-  std::string name;     ///< the user, for the others
+  std::string keyFile;    ///< the session key; empty: the first member makes one and prints it
+  std::string take;       ///< an object to ask for at once; --device holds it once it is ours
+  std::string share;      ///< an object to share (type-2); --device holds it once shared
+  bool passivity = true;  ///< the shared object's coupling through the passivity controller
+  std::string name;       ///< the user, for the others
   double streamHz = 200.0;
   double timeoutS = 2.0;
   double joinPatienceS = 10.0;

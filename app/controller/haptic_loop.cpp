@@ -34,6 +34,9 @@ HapticLoop::HapticLoop(const SimModel& model, SimState initial, std::shared_ptr<
       handles_(model.objects.size()),
       gains_(model.objects.size()),
       jitter_(model.objects.size(), JitterBuffer(options.playoutDelayUs)),
+      shared_(model.objects.size(), 0),
+      ports_(model.objects.size()),
+      external_(model.objects.size()),
       kinematic_(model.objects.size()),
       commands_(options.commandCapacity),
       remote_(options.remoteCapacity),
@@ -102,9 +105,15 @@ void HapticLoop::apply(const LoopCommand& command) noexcept {
     gains_[command.object] = command.gains;
     return;
   }
+  if (command.kind == LoopCommand::Kind::Share) {
+    // from where the owner's stream has put it, at its velocity: no step
+    shared_[command.object] = command.value == 1 ? 2 : 1;
+    return;
+  }
   if (command.kind == LoopCommand::Kind::SetOwner) {
     state_.owners[command.object] = command.value;
     jitter_[command.object].clear();
+    if (shared_[command.object] != 0) return;  // its instance goes on here whoever owns it
     // a part taken over starts at rest where it was shown, not with the remote velocity
     RigidBodyState& body = state_.bodies[command.object];
     body.linearVelocityWorld = body.angularVelocityWorld = glm::dvec3(0.0);
@@ -120,11 +129,26 @@ void HapticLoop::apply(const LoopCommand& command) noexcept {
 }
 
 void HapticLoop::take(const RemoteUpdate& update) noexcept {
-  if (update.object >= jitter_.size() || state_.owners[update.object] != update.owner ||
-      update.owner == options_.localPeer) {
-    return;  // a stream of an owner it no longer has
+  if (update.object >= jitter_.size()) return;
+  SharedObjectPort& port = ports_[update.object];
+  switch (update.kind) {
+    case RemoteUpdate::Kind::OwnerState:
+      if (state_.owners[update.object] != update.peer || update.peer == options_.localPeer ||
+          shared_[update.object] != 0) {
+        return;  // a stream of an owner it no longer has, or of an instance it has its own of
+      }
+      jitter_[update.object].push(update.sample, update.arrivalUs);
+      return;
+    case RemoteUpdate::Kind::SharedState:
+      port.take(update.peer, update.sample, update.inJ, update.arrivalUs);
+      return;
+    case RemoteUpdate::Kind::SharedDelay:
+      port.setDelay(update.peer, update.oneWayS);
+      return;
+    case RemoteUpdate::Kind::SharedLeft:
+      port.drop(update.peer);
+      return;
   }
-  jitter_[update.object].push(update.sample, update.arrivalUs);
 }
 
 void HapticLoop::moveRemoteObjects(std::int64_t endUs) noexcept {
@@ -132,13 +156,23 @@ void HapticLoop::moveRemoteObjects(std::int64_t endUs) noexcept {
   for (std::size_t i = 0; i < kinematic_.size(); ++i) {
     const PeerId owner = state_.owners[i];
     KinematicInput& k = kinematic_[i];
-    k.active = owner != options_.localPeer;
+    k.active = owner != options_.localPeer && shared_[i] == 0;
     if (!k.active) continue;
     if (owner == kNoPeer || !jitter_[i].playOut(endUs, k.targetWorld)) {
       // nobody moves it, or its owner's stream has not begun: it stays where it is
       k.targetWorld = state_.bodies[i];
       k.targetWorld.linearVelocityWorld = k.targetWorld.angularVelocityWorld = glm::dvec3(0.0);
     }
+  }
+}
+
+void HapticLoop::coupleSharedObjects(std::int64_t nowUs) noexcept {
+  for (std::size_t i = 0; i < external_.size(); ++i) {
+    if (shared_[i] == 0) continue;
+    external_[i] =
+        ports_[i]
+            .step(nowUs, model_.objects[i].body, state_.bodies[i], gains_[i], shared_[i] == 2, model_.dtS)
+            .wrench;
   }
 }
 
@@ -158,6 +192,19 @@ void HapticLoop::publish(FrameStatus status, std::uint64_t frame) noexcept {
     o.forceWorld = f.contactForceWorld;
     o.contacts = f.contacts;
     o.travelShare = outputs_.coherence.travelScale;
+    SharedSnapshot& shared = o.shared;
+    shared.shared = shared_[i] != 0;
+    if (!shared.shared) continue;
+    const SharedObjectPort::Frame& p = ports_[i].last();
+    shared.counted = static_cast<std::uint32_t>(p.counted);
+    shared.apartM = p.coupling.apartM;
+    shared.apartRad = p.coupling.apartRad;
+    shared.divergent = p.coupling.divergent;
+    shared.stiffnessShare = p.coupling.stiffnessShare;
+    shared.forceWorld = p.wrench.forceWorld;
+    shared.inJ = p.inJ;
+    shared.observedJ = p.observedJ;
+    shared.dissipatedJ = p.dissipatedJ;
   }
   s.forceLayer = state_.forceLayer;
   s.status = status;
@@ -190,11 +237,13 @@ void HapticLoop::run() noexcept {
     RemoteUpdate update;
     while (remote_.tryPop(update)) take(update);
     moveRemoteObjects(tick.beganNs / 1000 + options_.periodNs / 1000);
+    coupleSharedObjects(tick.beganNs / 1000);
     FrameInputs inputs;
     inputs.now = std::chrono::steady_clock::now();
     inputs.previousStepS = lastStepS;
     inputs.couplingGains = gains_;
     inputs.kinematic = kinematic_;
+    inputs.externalWrenches = external_;
     const FrameStatus status =
         stepWithDevices(model_, state_, workspace_, devices_, handles_, inputs, outputs_);
     lastStepS = std::chrono::duration<double>(std::chrono::steady_clock::now() - inputs.now).count();

@@ -18,6 +18,7 @@
 #include "haptics/runtime/jitter_buffer.h"
 #include "haptics/runtime/period_stats.h"
 #include "haptics/runtime/realtime.h"
+#include "haptics/runtime/shared_object_port.h"
 #include "haptics/runtime/spsc_queue.h"
 #include "haptics/runtime/triple_buffer.h"
 #include "haptics/sim/simulation.h"
@@ -31,7 +32,9 @@ struct LoopCommand {
     Release,           ///< `object` goes free; its device is retired
     SetForceLayer,     ///< the force layer becomes `value`
     SetCouplingGains,  ///< `object`'s coupling takes `gains`
-    SetOwner           ///< peer `value` owns `object` from now on (kNoPeer: nobody)
+    SetOwner,          ///< peer `value` owns `object` from now on (kNoPeer: nobody)
+    Share              ///< this peer integrates its own instance of `object` from now on, coupled to the
+                       ///< other sharers' (type-2); `value` 1: through the passivity controller
   };
   Kind kind = Kind::Release;
   std::uint32_t object = 0;
@@ -40,12 +43,35 @@ struct LoopCommand {
   CouplingGains gains;
 };
 
-/// A remote owner's state of one object (type-1, DESIGN §8), from the comms thread.
+/// What a remote peer has of one object (DESIGN §8), from the comms thread.
 struct RemoteUpdate {
+  enum class Kind : std::uint8_t {
+    OwnerState,   ///< its owner's state (type-1): taken only while `peer` owns the object
+    SharedState,  ///< a sharer's instance (type-2) with the energy in at its port, `inJ`
+    SharedDelay,  ///< a sharer's one-way delay became `oneWayS`
+    SharedLeft    ///< a sharer stopped sharing or left: its instance fades out
+  };
+  Kind kind = Kind::OwnerState;
   std::uint32_t object = 0;
-  PeerId owner = kNoPeer;      ///< taken only while this peer owns the object
-  RemoteSample sample;         ///< sent on the owner's clock
+  PeerId peer = kNoPeer;
+  RemoteSample sample;         ///< sent on the peer's clock
   std::int64_t arrivalUs = 0;  ///< monotonicTime() on this peer, µs
+  double inJ = 0.0;
+  double oneWayS = 0.0;
+};
+
+/// A shared object's coupling on this peer (type-2), in a snapshot.
+struct SharedSnapshot {
+  bool shared = false;        ///< this peer integrates its own instance
+  std::uint32_t counted = 0;  ///< other instances with a weight above zero
+  double apartM = 0.0;        ///< from the others' weighted average
+  double apartRad = 0.0;
+  bool divergent = false;
+  double stiffnessShare = 0.0;  ///< of the handle's stiffness (Σw²/Σw)
+  glm::dvec3 forceWorld{0.0};   ///< the coupling's on the instance, after passivity, N
+  double inJ = 0.0;             ///< energy in at the port so far
+  double observedJ = 0.0;       ///< the passivity observer
+  double dissipatedJ = 0.0;     ///< by the passivity controller so far
 };
 
 /// One moving object in a snapshot.
@@ -58,6 +84,7 @@ struct ObjectSnapshot {
   glm::dvec3 forceWorld{0.0};  ///< contact force, N
   std::uint32_t contacts = 0;
   double travelShare = 1.0;  ///< MaxTravel over its upper bound
+  SharedSnapshot shared;
 };
 
 /// What the haptic thread publishes after each frame.
@@ -84,7 +111,8 @@ struct HapticLoopOptions {
   /// This peer in a collaborative session (DESIGN §8); kNoPeer: alone, every object
   /// integrated here. In a session only the objects this peer owns are integrated; those
   /// a remote peer owns follow its stream (RemoteUpdate) through a jitter buffer, and
-  /// those nobody owns stay where they are, so that every peer sees the same.
+  /// those nobody owns stay where they are, so that every peer sees the same. An object
+  /// shared here (LoopCommand::Share) is integrated here whoever owns it.
   PeerId localPeer = kNoPeer;
   std::size_t remoteCapacity = 1024;  ///< RemoteUpdates queued, a power of two
   std::int64_t playoutDelayUs = 30'000;
@@ -110,7 +138,7 @@ public:
 
   /// Comms thread: queues `command`; false when the queue is full (nothing is queued).
   bool post(const LoopCommand& command) noexcept;
-  /// Comms thread: queues a remote owner's state; false when the queue is full.
+  /// Comms thread: queues what a remote peer has of an object; false when the queue is full.
   bool postRemote(const RemoteUpdate& update) noexcept;
   /// Comms thread: a device the haptic thread let go, now the caller's to delete; nullptr
   /// when there is none.
@@ -143,6 +171,8 @@ private:
   void take(const RemoteUpdate& update) noexcept;
   /// Fills kinematic_ for the frame ending at local time `endUs`.
   void moveRemoteObjects(std::int64_t endUs) noexcept;
+  /// Fills external_ with the shared objects' couplings at local time `nowUs`.
+  void coupleSharedObjects(std::int64_t nowUs) noexcept;
   void retire(std::size_t object) noexcept;
   void publish(FrameStatus status, std::uint64_t frame) noexcept;
 
@@ -154,8 +184,11 @@ private:
   std::vector<GrabbedDevice> grabbed_;
   std::vector<HapticDevice*> devices_;  ///< &grabbed_[i] while held, else nullptr
   std::vector<HandleInput> handles_;
-  std::vector<CouplingGains> gains_;  ///< per object, its coupling's (the model's until set)
-  std::vector<JitterBuffer> jitter_;  ///< per object, its remote owner's stream
+  std::vector<CouplingGains> gains_;     ///< per object, its coupling's (the model's until set)
+  std::vector<JitterBuffer> jitter_;     ///< per object, its remote owner's stream
+  std::vector<std::uint8_t> shared_;     ///< per object: 0 not shared here, 1 shared, 2 with passivity
+  std::vector<SharedObjectPort> ports_;  ///< per object, its coupling when shared here
+  std::vector<ExternalWrench> external_;
   std::vector<KinematicInput> kinematic_;
   SpscQueue<LoopCommand> commands_;
   SpscQueue<RemoteUpdate> remote_;

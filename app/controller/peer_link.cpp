@@ -1,5 +1,6 @@
 #include "app/controller/peer_link.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "haptics/core/error.h"
@@ -26,12 +27,14 @@ PeerLink::PeerLink(asio::io_context& io, net::PeerSession& session, ControllerSe
       period_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
           std::chrono::duration<double>(1.0 / options_.streamHz))) {
   const SimModel& model = service_.session()->built->model;
-  if (!options_.take.empty()) {
+  const auto objectNamed = [&model](const std::string& name, const char* option) {
     for (std::size_t i = 0; i < model.objects.size(); ++i) {
-      if (model.objects[i].name == options_.take) takeObject_ = static_cast<int>(i);
+      if (model.objects[i].name == name) return static_cast<int>(i);
     }
-    if (takeObject_ < 0) throw Error("--take: no moving object '" + options_.take + "'");
-  }
+    throw Error(std::string(option) + ": no moving object '" + name + "'");
+  };
+  if (!options_.take.empty()) takeObject_ = objectNamed(options_.take, "--take");
+  if (!options_.share.empty()) shareObject_ = objectNamed(options_.share, "--share");
   const FrameSnapshot& first = loopOf(service_).latest();
   std::vector<PeerId> owners;
   for (const ObjectSnapshot& o : first.objects) owners.push_back(o.owner);
@@ -39,9 +42,11 @@ PeerLink::PeerLink(asio::io_context& io, net::PeerSession& session, ControllerSe
       owners,
       [this](std::uint32_t object, PeerId owner, std::int64_t sentUs, const RigidBodyState& body,
              std::int64_t arrivalUs) {
+        if (static_cast<int>(object) == shareObject_ && !followedSince_)
+          followedSince_ = std::chrono::steady_clock::now();
         RemoteUpdate update;
         update.object = object;
-        update.owner = owner;
+        update.peer = owner;
         update.sample = RemoteSample{sentUs, body};
         update.arrivalUs = arrivalUs;
         if (loopOf(service_).postRemote(update)) {
@@ -76,8 +81,93 @@ net::LocalFrame PeerLink::localFrame() {
   for (const ObjectSnapshot& o : s.objects) {
     frame.bodies.push_back(o.body);
     frame.held.push_back(o.held);
+    frame.sharedInJ.push_back(o.shared.inJ);
+    frame.divergent.push_back(o.shared.divergent);
   }
   return frame;
+}
+
+void PeerLink::grab(const std::string& object) {
+  pb::ClientMessage grab;
+  grab.mutable_grab()->set_object(object);
+  grab.mutable_grab()->set_device(options_.takeDevice);
+  pb::ServerMessage reply;
+  service_.handle(0, grab, reply);
+  if (reply.has_error()) log_("cannot grab '" + object + "': " + reply.error().message());
+}
+
+void PeerLink::tickShared(const FrameSnapshot& s) {
+  const auto object = static_cast<std::uint32_t>(shareObject_);
+  const std::vector<net::SharerView> sharers = session_.sharers(object);
+  if (!sharing_) {
+    const std::vector<net::MemberView> members = session_.members();
+    const bool allHeard =
+        std::all_of(members.begin(), members.end(), [](const net::MemberView& m) { return m.heard; });
+    const bool followed =
+        followedSince_ && std::chrono::steady_clock::now() - *followedSince_ >= kFollowBeforeSharing;
+    if (!(followed || (sharers.empty() && allHeard))) return;
+    session_.share(object, [this](std::uint32_t o, PeerId sharer, std::int64_t sentUs,
+                                  const RigidBodyState& body, double inJ, std::int64_t arrivalUs) {
+      RemoteUpdate update;
+      update.kind = RemoteUpdate::Kind::SharedState;
+      update.object = o;
+      update.peer = sharer;
+      update.sample = RemoteSample{sentUs, body};
+      update.arrivalUs = arrivalUs;
+      update.inJ = inJ;
+      if (loopOf(service_).postRemote(update)) {
+        ++shared_.sharedStates;
+      } else {
+        ++counts_.remoteStatesDropped;
+      }
+    });
+    LoopCommand command;
+    command.kind = LoopCommand::Kind::Share;
+    command.object = object;
+    command.value = options_.passivity ? 1 : 0;
+    if (!loopOf(service_).post(command)) log_("the haptic thread's queue is full: sharing begins late");
+    sharing_ = true;
+    log_("sharing '" + options_.share + "' with " + std::to_string(sharers.size()) + " other peer(s)" +
+         (options_.passivity ? "" : ", without the passivity controller"));
+    if (!options_.takeDevice.empty()) grab(options_.share);
+    return;
+  }
+  // pass on new delays, and who has stopped sharing
+  std::map<PeerId, double> now;
+  for (const net::SharerView& v : sharers) now[v.peer] = v.oneWayMs < 0.0 ? 0.0 : 1e-3 * v.oneWayMs;
+  for (const auto& [peer, delayS] : sharerDelaysS_) {
+    if (now.count(peer)) continue;
+    RemoteUpdate left;
+    left.kind = RemoteUpdate::Kind::SharedLeft;
+    left.object = object;
+    left.peer = peer;
+    if (!loopOf(service_).postRemote(left)) now[peer] = delayS;  // told at the next tick
+  }
+  for (const auto& [peer, delayS] : now) {
+    const auto it = sharerDelaysS_.find(peer);
+    if (it != sharerDelaysS_.end() && it->second == delayS) continue;
+    RemoteUpdate delay;
+    delay.kind = RemoteUpdate::Kind::SharedDelay;
+    delay.object = object;
+    delay.peer = peer;
+    delay.oneWayS = delayS;
+    if (!loopOf(service_).postRemote(delay)) {
+      now.erase(peer);  // passed on at the next tick
+      break;
+    }
+  }
+  sharerDelaysS_ = std::move(now);
+  const SharedSnapshot& o = s.objects[object].shared;
+  ++shared_.ticks;
+  if (o.counted > 0) {
+    ++shared_.coupledTicks;
+    shared_.sumApartM += o.apartM;
+    shared_.maxApartM = std::max(shared_.maxApartM, o.apartM);
+    if (o.divergent) ++shared_.divergentTicks;
+  }
+  shared_.minObservedJ = std::min(shared_.minObservedJ, o.observedJ);
+  shared_.inJ = o.inJ;
+  shared_.dissipatedJ = o.dissipatedJ;
 }
 
 void PeerLink::ownerChanged(std::uint32_t object, PeerId owner) {
@@ -93,7 +183,7 @@ void PeerLink::ownerChanged(std::uint32_t object, PeerId owner) {
        (mine               ? std::string("this peer's")
         : owner == kNoPeer ? "nobody's"
                            : "peer " + std::to_string(owner) + "'s"));
-  if (!mine && loopOf(service_).latest().objects[object].held) {
+  if (!mine && !session_.sharing(object) && loopOf(service_).latest().objects[object].held) {
     // another peer won it: this peer's users let go
     pb::ClientMessage release;
     release.mutable_release()->set_object(name);
@@ -106,14 +196,10 @@ void PeerLink::tick() {
   if (stopped_) return;
   ++counts_.ticks;
   session_.tick(localFrame());
+  if (shareObject_ >= 0) tickShared(loopOf(service_).latest());
   if (takeObject_ >= 0 && !takeGrabbed_ && !options_.takeDevice.empty() &&
       session_.owners()[static_cast<std::size_t>(takeObject_)] == session_.self()) {
-    pb::ClientMessage grab;
-    grab.mutable_grab()->set_object(options_.take);
-    grab.mutable_grab()->set_device(options_.takeDevice);
-    pb::ServerMessage reply;
-    service_.handle(0, grab, reply);
-    if (reply.has_error()) log_("cannot grab '" + options_.take + "': " + reply.error().message());
+    grab(options_.take);
     takeGrabbed_ = true;
   }
   // on the clock, not after the work: the stream keeps its rate

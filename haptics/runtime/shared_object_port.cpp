@@ -72,6 +72,7 @@ const SharedObjectPort::Frame& SharedObjectPort::step(std::int64_t nowUs, const 
       passivity ? passivity_.passive(frame_.coupling.onLocal, model, local, othersInJ, n + 1, dtS)
                 : frame_.coupling.onLocal;
   frame_.wrench = {w.forceWorld, w.torqueWorld};
+  frame_.inJ = passivity_.inJ();
   frame_.observedJ = passivity ? passivity_.observedJ() : 0.0;
   frame_.dissipatedJ = passivity_.dissipatedJ();
   return frame_;

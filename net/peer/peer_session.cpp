@@ -76,6 +76,27 @@ glm::dvec3 fromVec3(const pb::Vec3& v) {
   return {v.x(), v.y(), v.z()};
 }
 
+void toBody(std::uint32_t object, const RigidBodyState& b, pb::Body& body) {
+  body.set_object(object);
+  toVec3(b.comWorld, *body.mutable_com_m());
+  body.mutable_orientation()->set_w(b.orientation.w);
+  body.mutable_orientation()->set_x(b.orientation.x);
+  body.mutable_orientation()->set_y(b.orientation.y);
+  body.mutable_orientation()->set_z(b.orientation.z);
+  toVec3(b.linearVelocityWorld, *body.mutable_velocity_m_per_s());
+  toVec3(b.angularVelocityWorld, *body.mutable_angular_velocity_rad_per_s());
+}
+
+RigidBodyState fromBody(const pb::Body& body) {
+  RigidBodyState b;
+  b.comWorld = fromVec3(body.com_m());
+  b.orientation = glm::dquat(body.orientation().w(), body.orientation().x(), body.orientation().y(),
+                             body.orientation().z());
+  b.linearVelocityWorld = fromVec3(body.velocity_m_per_s());
+  b.angularVelocityWorld = fromVec3(body.angular_velocity_rad_per_s());
+  return b;
+}
+
 std::string differs(const char* what, double mine, double theirs) {
   return std::string(what) + " " + std::to_string(theirs) + " here, " + std::to_string(mine) + " there";
 }
@@ -257,6 +278,12 @@ void PeerSession::onState(PeerId from, const DatagramHeader& header, const pb::P
   m->owns = {state.owns().begin(), state.owns().end()};
   m->wants = {state.wants().begin(), state.wants().end()};
   m->holding = {state.holding().begin(), state.holding().end()};
+  m->shares.clear();
+  m->divergent.clear();
+  for (const pb::Share& share : state.shares()) {
+    m->shares.insert(share.body().object());
+    if (share.divergent()) m->divergent.insert(share.body().object());
+  }
   for (const pb::Member& gossip : state.members()) {
     if (gossip.peer() == self_ || gossip.peer() == kNoPeer || members_.count(gossip.peer())) continue;
     const std::optional<asio::ip::udp::endpoint> endpoint = parseEndpoint(gossip.endpoint());
@@ -265,15 +292,19 @@ void PeerSession::onState(PeerId from, const DatagramHeader& header, const pb::P
   settleOwners();
   const std::int64_t arrivalUs =
       std::chrono::duration_cast<std::chrono::microseconds>(now.time_since_epoch()).count();
-  for (const pb::Body& body : state.bodies()) {
-    if (body.object() >= owners_.size() || owners_[body.object()] != from) continue;
-    RigidBodyState b;
-    b.comWorld = fromVec3(body.com_m());
-    b.orientation = glm::dquat(body.orientation().w(), body.orientation().x(), body.orientation().y(),
-                               body.orientation().z());
-    b.linearVelocityWorld = fromVec3(body.velocity_m_per_s());
-    b.angularVelocityWorld = fromVec3(body.angular_velocity_rad_per_s());
-    if (onBody_) onBody_(body.object(), from, state.sent_us(), b, arrivalUs);
+  // an owner's bodies, and its instances of what it shares when it owns them
+  const auto followOwner = [&](const pb::Body& body) {
+    if (body.object() < owners_.size() && owners_[body.object()] == from && onBody_)
+      onBody_(body.object(), from, state.sent_us(), fromBody(body), arrivalUs);
+  };
+  for (const pb::Body& body : state.bodies()) followOwner(body);
+  for (const pb::Share& share : state.shares()) {
+    if (!shares_.count(share.body().object())) {
+      followOwner(share.body());
+    } else if (onShared_) {
+      onShared_(share.body().object(), from, state.sent_us(), fromBody(share.body()), share.in_j(),
+                arrivalUs);
+    }
   }
 }
 
@@ -454,21 +485,44 @@ void PeerSession::start(const std::vector<PeerId>& owners, RemoteBodyFn onBody, 
 }
 
 void PeerSession::want(std::uint32_t object) {
-  if (object < owners_.size() && owners_[object] != self_) wants_.insert(object);
+  if (object < owners_.size() && owners_[object] != self_ && !shares_.count(object)) wants_.insert(object);
+}
+
+void PeerSession::share(std::uint32_t object, SharedBodyFn onShared) {
+  if (!started_ || object >= owners_.size()) return;
+  shares_.insert(object);
+  wants_.erase(object);
+  onShared_ = std::move(onShared);
+  settleOwners();
+}
+
+std::vector<SharerView> PeerSession::sharers(std::uint32_t object) const {
+  std::vector<SharerView> out;
+  for (const auto& [id, m] : members_) {
+    if (m.shares.count(object)) out.push_back({id, m.delay.oneWayMs(), m.divergent.count(object) > 0});
+  }
+  return out;
 }
 
 void PeerSession::settleOwners() {
-  // a lower-numbered claimant wins: drop what one of them claims too
+  // a lower-numbered claimant wins, and a sharer wins over any: drop what they claim too
   for (auto it = mine_.begin(); it != mine_.end();) {
-    const bool lower = std::any_of(members_.begin(), members_.end(), [&](const auto& m) {
-      return m.first < self_ && m.second.owns.count(*it);
-    });
-    it = lower ? mine_.erase(it) : std::next(it);
+    const bool outranked =
+        shares_.count(*it) || std::any_of(members_.begin(), members_.end(), [&](const auto& m) {
+          return m.second.shares.count(*it) || (m.first < self_ && m.second.owns.count(*it));
+        });
+    it = outranked ? mine_.erase(it) : std::next(it);
   }
   for (std::uint32_t o = 0; o < owners_.size(); ++o) {
-    PeerId owner = mine_.count(o) ? self_ : kNoPeer;
+    // a shared object's lowest sharer, else its lowest claimant
+    PeerId owner = shares_.count(o) ? self_ : kNoPeer;
     for (const auto& [id, m] : members_) {
-      if (m.owns.count(o) && (owner == kNoPeer || id < owner)) owner = id;
+      if (m.shares.count(o) && (owner == kNoPeer || id < owner)) owner = id;
+    }
+    const bool shared = owner != kNoPeer;
+    if (!shared && mine_.count(o)) owner = self_;
+    for (const auto& [id, m] : members_) {
+      if (!shared && m.owns.count(o) && (owner == kNoPeer || id < owner)) owner = id;
     }
     if (owner == owners_[o]) continue;
     owners_[o] = owner;
@@ -487,17 +541,14 @@ pb::PeerState PeerSession::heartbeat(const LocalFrame& frame, bool leaving) cons
   for (const std::uint32_t o : mine_) {
     state.add_owns(o);
     if (o < frame.held.size() && frame.held[o]) state.add_holding(o);
+    if (o < frame.bodies.size()) toBody(o, frame.bodies[o], *state.add_bodies());
+  }
+  for (const std::uint32_t o : shares_) {
     if (o >= frame.bodies.size()) continue;
-    const RigidBodyState& b = frame.bodies[o];
-    pb::Body& body = *state.add_bodies();
-    body.set_object(o);
-    toVec3(b.comWorld, *body.mutable_com_m());
-    body.mutable_orientation()->set_w(b.orientation.w);
-    body.mutable_orientation()->set_x(b.orientation.x);
-    body.mutable_orientation()->set_y(b.orientation.y);
-    body.mutable_orientation()->set_z(b.orientation.z);
-    toVec3(b.linearVelocityWorld, *body.mutable_velocity_m_per_s());
-    toVec3(b.angularVelocityWorld, *body.mutable_angular_velocity_rad_per_s());
+    pb::Share& share = *state.add_shares();
+    toBody(o, frame.bodies[o], *share.mutable_body());
+    share.set_in_j(o < frame.sharedInJ.size() ? frame.sharedInJ[o] : 0.0);
+    share.set_divergent(o < frame.divergent.size() && frame.divergent[o]);
   }
   for (const std::uint32_t o : wants_) state.add_wants(o);
   const Clock::time_point now = Clock::now();
@@ -559,7 +610,7 @@ std::vector<MemberView> PeerSession::members() const {
   const Clock::time_point now = Clock::now();
   for (const auto& [id, m] : members_) {
     out.push_back({id, text(m.endpoint), m.name, m.delay.roundTripMs(), m.delay.oneWayMs(),
-                   secondsBetween(m.heard, now), m.bytesIn, m.bytesOut});
+                   secondsBetween(m.heard, now), m.heardDirectly, m.bytesIn, m.bytesOut});
   }
   return out;
 }

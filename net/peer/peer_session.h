@@ -17,6 +17,11 @@
 /// sees a lower one list what it claims drops its claim. A peer claims what it wants once
 /// nobody owns it; an owner hands over what another wants and none of its users holds;
 /// a gone owner's objects are nobody's (each peer holds them where they are).
+///
+/// Shared objects (type-2): a peer that shares an object lists it, with its own instance,
+/// in every heartbeat. Each sharer takes the others' instances (onShared); for the peers
+/// that do not share it, its owner is its lowest-numbered sharer, whose instance they
+/// follow like any owner's. Sharing outranks a claim: nobody owns what somebody shares.
 
 #include <chrono>
 #include <cstdint>
@@ -62,6 +67,17 @@ struct LocalFrame {
   std::uint64_t frame = 0;
   std::vector<RigidBodyState> bodies;  ///< every moving object
   std::vector<bool> held;              ///< per object: a local user holds it
+  /// Per object this peer shares (else ignored): the energy put in at its coupling port
+  /// so far, J, and whether its instance is divergent.
+  std::vector<double> sharedInJ;
+  std::vector<bool> divergent;
+};
+
+/// Another peer's instance of an object this peer shares, as this peer last heard of it.
+struct SharerView {
+  PeerId peer = kNoPeer;
+  double oneWayMs = -1.0;  ///< < 0: not measured yet
+  bool divergent = false;
 };
 
 /// What the session counted, for statistics and tests.
@@ -86,6 +102,7 @@ struct MemberView {
   double rttMs = -1.0;     ///< filtered round trip, < 0: not measured yet
   double oneWayMs = -1.0;  ///< one-way delay as reported (OneWayDelay), < 0: not measured yet
   double sinceHeardS = 0.0;
+  bool heard = false;  ///< a heartbeat has come from it (not only word of it from others)
   std::uint64_t bytesIn = 0;
   std::uint64_t bytesOut = 0;
 };
@@ -98,6 +115,10 @@ public:
                                           const RigidBodyState& body, std::int64_t arrivalUs)>;
   /// `object` is `owner`'s now (kNoPeer: nobody's).
   using OwnerFn = std::function<void(std::uint32_t object, PeerId owner)>;
+  /// Another sharer's instance of `object`, which this peer shares too, with the energy put
+  /// in at its port so far (J), arrived at `arrivalUs`.
+  using SharedBodyFn = std::function<void(std::uint32_t object, PeerId sharer, std::int64_t sentUs,
+                                          const RigidBodyState& body, double inJ, std::int64_t arrivalUs)>;
   /// The local state as saveState bytes, for a joiner's snapshot.
   using SnapshotFn = std::function<std::vector<std::byte>()>;
 
@@ -120,6 +141,12 @@ public:
   void tick(const LocalFrame& frame);
   /// Asks for `object`: claimed at the next tick when nobody owns it, else asked of its owner.
   void want(std::uint32_t object);
+  /// Shares `object` from the next tick on: lists it with this peer's instance, and hands
+  /// the other sharers' instances to `onShared`. After start(); an object out of range is ignored.
+  void share(std::uint32_t object, SharedBodyFn onShared);
+  bool sharing(std::uint32_t object) const { return shares_.count(object) > 0; }
+  /// The other members that share `object`, lowest-numbered first.
+  std::vector<SharerView> sharers(std::uint32_t object) const;
   /// Sends a last heartbeat, marked leaving, three times.
   void leave(const LocalFrame& frame);
 
@@ -139,7 +166,7 @@ private:
     asio::ip::udp::endpoint endpoint;
     std::string name;
     Clock::time_point heard{};
-    std::set<std::uint32_t> owns, wants, holding;
+    std::set<std::uint32_t> owns, wants, holding, shares, divergent;
     std::uint32_t theirSentUs = 0;  ///< header send time of their newest datagram
     Clock::time_point theirSentAt{};
     bool heardDirectly = false;
@@ -180,12 +207,13 @@ private:
   std::map<PeerId, Member> members_;
   std::map<PeerId, Clock::time_point> gone_;
   std::map<PeerId, Snapshot> snapshots_;  ///< one per joiner, served in chunks
-  std::set<std::uint32_t> mine_, wants_;
+  std::set<std::uint32_t> mine_, wants_, shares_;
   std::vector<PeerId> owners_;
   std::vector<std::string> warnings_;
   std::string advertised_;  ///< what heartbeats and Welcomes say this peer's endpoint is
   RemoteBodyFn onBody_;
   OwnerFn onOwner_;
+  SharedBodyFn onShared_;
   SnapshotFn snapshotFn_;
   bool started_ = false;
   // joining

@@ -19,10 +19,8 @@
 #include "net/frontend/frontend_client.h"
 #include "net/peer/datagram.h"
 #include "net/peer/peer_session.h"
-#include "support/child_process.h"
-#include "support/cli_runner.h"
-#include "support/gltf_fixtures.h"
 #include "support/newest_update.h"
+#include "support/peer_processes.h"
 #include "support/sanitizers.h"
 
 namespace voxhap::test {
@@ -31,146 +29,18 @@ namespace {
 using namespace std::chrono_literals;
 namespace pb = net::pb;
 
-constexpr double kVoxelM = 0.001;
-constexpr std::array<const char*, 3> kBoxes = {"left", "middle", "right"};
-
-/// An axis-aligned box of half extents `half` about `centre`, m.
-MeshData box(const glm::vec3& centre, const glm::vec3& half) {
-  MeshData m = unitCube();
-  for (glm::vec3& p : m.positions) p = centre + (2.0f * p - 1.0f) * half;
-  return m;
-}
-
-/// A 200 × 200 × 10 mm plate whose top is z = 0 and three 20 mm boxes 3 mm over it, their
-/// centres 25 mm apart along x (5 mm gaps).
-void writeBoxesScene(const std::filesystem::path& dir) {
-  GltfDoc doc;
-  doc.addMeshNode(doc.addMesh(box({0.0f, 0.0f, -0.005f}, {0.1f, 0.1f, 0.005f})), "plate");
-  for (int i = 0; i < 3; ++i)
-    doc.addMeshNode(doc.addMesh(box({0.025f * static_cast<float>(i - 1), 0.0f, 0.013f}, glm::vec3(0.01f))),
-                    kBoxes[static_cast<std::size_t>(i)]);
-  writeDoc(doc, dir, "boxes", BufferStorage::Glb);
-}
-
-class PeerCommand : public CliTest {
-public:
-  struct Peer {
-    std::unique_ptr<ChildProcess> child;
-    std::uint16_t udpPort = 0;
-    std::uint16_t advertisedPort = 0;  ///< where the others send to (a relay, or udpPort)
-    std::uint16_t frontendPort = 0;
-    std::string id;
-  };
-
-  const std::filesystem::path& dir() const { return dir_; }
-
-protected:
-  void SetUp() override {
-    CliTest::SetUp();
-    writeBoxesScene(dir_);
-    std::ofstream(dir_ / "session.key") << std::string(64, 'a') << "\n";
-    // a user that holds its box where it is
-    std::ofstream(dir_ / "hold.txt") << "0 1 0 0 0 0 0 0\n60 1 0 0 0 0 0 0\n";
-  }
-
-public:
-  /// Starts a headless peer of the boxes scene with `extra` arguments; waits until it
-  /// listens for peers and front ends.
-  Peer startPeer(const std::string& name, std::vector<std::string> extra) {
-    std::vector<std::string> args = {
-        "peer",       "boxes.glb",     "--move",       "left",      "--move", "middle",
-        "--move",     "right",         "--voxel-size", "1mm",       "--key",  "session.key",
-        "--headless", "--no-realtime", "--json",       "--timeout", "1"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    Peer p;
-    p.child = std::make_unique<ChildProcess>(VOXHAP_EXE, args, dir_, name);
-    const auto id = p.child->waitForStderr("voxhap: peer ", 120s);
-    const auto udp = p.child->waitForStderr("listening for peers on 127.0.0.1:", 120s);
-    const auto tcp = p.child->waitForStderr("listening on 127.0.0.1:", 120s);
-    EXPECT_TRUE(id && udp && tcp) << p.child->err();
-    if (!id || !udp || !tcp) return p;
-    p.id = id->substr(0, id->find(' '));
-    p.udpPort = static_cast<std::uint16_t>(std::stoi(*udp));
-    p.advertisedPort = p.udpPort;
-    for (std::size_t i = 0; i + 1 < extra.size(); ++i) {
-      if (extra[i] == "--advertise")
-        p.advertisedPort =
-            static_cast<std::uint16_t>(std::stoi(extra[i + 1].substr(extra[i + 1].rfind(':') + 1)));
-    }
-    p.frontendPort = static_cast<std::uint16_t>(std::stoi(*tcp));
-    return p;
-  }
-
-  /// Peer `p`'s JSON summary once it has stopped after SIGTERM.
-  static nlohmann::json stop(Peer& p) {
-    p.child->signal(SIGTERM);
-    const auto status = p.child->wait(30s);
-    EXPECT_EQ(status.value_or(-2), 0) << p.child->err();
-    return nlohmann::json::parse(p.child->out(), nullptr, false);
-  }
-};
-
-glm::dvec3 positionOf(const pb::ObjectState& o) {
-  return {o.pose().position_m().x(), o.pose().position_m().y(), o.pose().position_m().z()};
-}
-
-/// A free UDP port on loopback (bound and let go: a peer behind a relay needs its port
-/// before it starts, for the relay's target).
-std::uint16_t freeUdpPort() {
-  asio::io_context io;
-  asio::ip::udp::socket socket(io, asio::ip::udp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
-  return socket.local_endpoint().port();
-}
-
-/// The path between the peers: direct, or each peer behind a relay that delays what comes
-/// to it by `delay` ± a tenth and loses `loss` of it.
-struct Path {
-  std::string delay;  ///< empty: direct
-  std::string loss = "5%";
-};
-
-/// Moves the handle of `object` on `client`'s controller to x = `toM` (from its place in
-/// the scene) in 1 mm steps every 20 ms.
-void slideHandle(net::FrontendClient& client, const std::string& object, double fromM, double toM) {
-  const int steps = static_cast<int>(std::lround(std::abs(toM - fromM) / 0.001));
-  for (int i = 1; i <= steps; ++i) {
-    pb::ClientMessage move;
-    move.mutable_move_handle()->set_object(object);
-    move.mutable_move_handle()->mutable_handle()->mutable_position_m()->set_x(fromM +
-                                                                              (toM - fromM) * i / steps);
-    move.mutable_move_handle()->mutable_handle()->mutable_orientation()->set_w(1.0);
-    const pb::ServerMessage reply = client.request(move);
-    ASSERT_TRUE(reply.has_done()) << reply.DebugString();
-    std::this_thread::sleep_for(20ms);
-  }
-}
+class PeerCommand : public PeerProcessTest {};
 
 /// Three peers, each owning one of the three boxes, the second and third holding theirs
 /// where they are; once all are up, the first user drags its box 15 mm into the middle one
 /// (5 mm away), holds it there 2 s, and takes it back. Checks what every peer shows while
 /// they touch and at rest, and what each counted.
 void pushScenario(PeerCommand& test, const Path& path) {
-  std::vector<std::unique_ptr<ChildProcess>> relays;
-  // where each peer listens and where the others send to it
+  PeerPlacement placement(test, path);
   auto placed = [&](const std::string& name, std::vector<std::string> args) {
-    if (path.delay.empty()) return args;
-    const std::uint16_t port = freeUdpPort();
-    const double delayMs = std::stod(path.delay);
-    relays.push_back(std::make_unique<ChildProcess>(
-        VOXHAP_EXE,
-        std::vector<std::string>{"relay", "--to", "127.0.0.1:" + std::to_string(port), "--delay",
-                                 path.delay + "ms", "--jitter", std::to_string(delayMs / 10.0) + "ms",
-                                 "--loss", path.loss, "--seed", std::to_string(relays.size() + 1)},
-        test.dir(), name + "-relay" + path.delay));
-    const auto relayPort = relays.back()->waitForStderr("relaying 127.0.0.1:", 30s);
-    EXPECT_TRUE(relayPort) << relays.back()->err();
-    args.insert(args.end(), {"--listen", "127.0.0.1:" + std::to_string(port), "--advertise",
-                             "127.0.0.1:" + relayPort->substr(0, relayPort->find(' '))});
-    return args;
+    return placement.place(name, std::move(args));
   };
-  auto advertised = [&](const PeerCommand::Peer& p) {
-    return "127.0.0.1:" + std::to_string(p.advertisedPort);
-  };
+  const auto advertised = &PeerPlacement::advertised;
   PeerCommand::Peer a = test.startPeer("a" + path.delay, placed("a", {"--take", "left", "--name", "ann"}));
   ASSERT_NE(a.udpPort, 0);
   PeerCommand::Peer b =
@@ -188,9 +58,7 @@ void pushScenario(PeerCommand& test, const Path& path) {
   for (PeerCommand::Peer* p : peers) {
     clients.push_back(std::make_unique<net::FrontendClient>("127.0.0.1", p->frontendPort, 5000ms));
     clients.back()->hello("peer test");
-    pb::ClientMessage subscribe;
-    subscribe.mutable_subscribe()->set_rate_hz(50.0);
-    ASSERT_TRUE(clients.back()->request(subscribe).has_done());
+    subscribe(*clients.back());
   }
   pb::ClientMessage grab;
   grab.mutable_grab()->set_object("left");
@@ -220,7 +88,7 @@ void pushScenario(PeerCommand& test, const Path& path) {
     std::this_thread::sleep_for(50ms);
   }
   EXPECT_GT(middleContacts[1], 0u) << "the middle box's owner felt no contact";
-  EXPECT_LT(deepestM, 0.1 * kVoxelM);
+  EXPECT_LT(deepestM, 0.1 * kBoxesVoxelM);
   const double pushedM = positionOf(newestUpdate(*clients[0]).objects(0)).x;
   EXPECT_GT(pushedM, 0.003) << "the left box was not pushed";
   slideHandle(*clients[0], "left", 0.015, 0.0);
@@ -321,9 +189,7 @@ TEST_F(PeerCommand, PeersJoinLeaveAndDieDuringContactAndTheRestGoOn) {
   ASSERT_NE(b.udpPort, 0);
   net::FrontendClient client("127.0.0.1", a.frontendPort, 5000ms);
   client.hello("peer test");
-  pb::ClientMessage subscribe;
-  subscribe.mutable_subscribe()->set_rate_hz(50.0);
-  ASSERT_TRUE(client.request(subscribe).has_done());
+  subscribe(client);
   // (up to 30 s: a sanitizer's build is slower)
   std::uint32_t contacts = 0;
   for (int i = 0; i < 600 && contacts == 0; ++i) {
@@ -406,9 +272,7 @@ TEST_F(PeerCommand, AMillionRandomAndMutatedDatagramsLeaveAPeerRunningAndCounted
   // it still runs: its frames go on and a front end is served
   net::FrontendClient client("127.0.0.1", a.frontendPort, 5000ms);
   client.hello("after the flood");
-  pb::ClientMessage subscribe;
-  subscribe.mutable_subscribe()->set_rate_hz(50.0);
-  ASSERT_TRUE(client.request(subscribe).has_done());
+  subscribe(client);
   const std::uint64_t frame = newestUpdate(client).frame();
   std::this_thread::sleep_for(200ms);
   EXPECT_GT(newestUpdate(client).frame(), frame);
@@ -444,7 +308,7 @@ TEST_F(PeerCommand, ThreePeersPushEachOthersBoxesAndAgreeWhereEveryBoxIs) {
 TEST_F(PeerCommand, ThroughRelaysOf0And100And300MillisecondsLosingFivePercentTheyStillAgree) {
   for (const char* delay : {"0", "100", "300"}) {
     SCOPED_TRACE(std::string(delay) + " ms");
-    pushScenario(*this, {delay, "5%"});
+    pushScenario(*this, {delay, "5%", ""});
   }
 }
 

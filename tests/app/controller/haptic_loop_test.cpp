@@ -173,13 +173,13 @@ TEST_F(HapticLoopTest, InASessionItMovesWhatItOwnsFollowsWhatOthersOwnAndHoldsTh
   waitFor([](const FrameSnapshot& s) { return s.objects[0].owner == 9; });
   RemoteUpdate update;
   update.object = 0;
-  update.owner = 8;
+  update.peer = 8;
   update.sample.body = held.objects[0].body;
   update.sample.body.comWorld.y += 0.02;
   update.sample.sentUs = 1;
   update.arrivalUs = monotonicTime().nowNs() / 1000;
   ASSERT_TRUE(loop_->postRemote(update));
-  update.owner = 9;
+  update.peer = 9;
   update.sample.body.comWorld.y = held.objects[0].body.comWorld.y;
   update.sample.body.comWorld.x += 0.005;
   ASSERT_TRUE(loop_->postRemote(update));
