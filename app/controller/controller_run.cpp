@@ -200,6 +200,7 @@ nlohmann::ordered_json sharedJson(const net::PeerSession& peer, const controller
                        {"divergent_ticks", s.divergentTicks},
                        {"mean_apart_mm", 1e3 * s.sumApartM / coupled},
                        {"max_apart_mm", 1e3 * s.maxApartM},
+                       {"max_stiffness_share", s.maxStiffnessShare},
                        {"min_observed_j", s.minObservedJ},
                        {"in_j", s.inJ},
                        {"dissipated_j", s.dissipatedJ},

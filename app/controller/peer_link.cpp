@@ -132,37 +132,33 @@ void PeerLink::tickShared(const FrameSnapshot& s) {
     if (!options_.takeDevice.empty()) grab(options_.share);
     return;
   }
-  // pass on new delays, and who has stopped sharing
-  std::map<PeerId, double> now;
-  for (const net::SharerView& v : sharers) now[v.peer] = v.oneWayMs < 0.0 ? 0.0 : 1e-3 * v.oneWayMs;
-  for (const auto& [peer, delayS] : sharerDelaysS_) {
-    if (now.count(peer)) continue;
-    RemoteUpdate left;
-    left.kind = RemoteUpdate::Kind::SharedLeft;
-    left.object = object;
-    left.peer = peer;
-    if (!loopOf(service_).postRemote(left)) now[peer] = delayS;  // told at the next tick
+  // the sharers' delays (at every tick: a sharer's slot may be newer than its delay), and
+  // who has stopped sharing
+  std::set<PeerId> now;
+  auto post = [&](RemoteUpdate::Kind kind, PeerId peer, double oneWayS) {
+    RemoteUpdate u;
+    u.kind = kind;
+    u.object = object;
+    u.peer = peer;
+    u.oneWayS = oneWayS;
+    return loopOf(service_).postRemote(u);
+  };
+  for (const net::SharerView& v : sharers) {
+    now.insert(v.peer);
+    post(RemoteUpdate::Kind::SharedDelay, v.peer, v.oneWayMs < 0.0 ? -1.0 : 1e-3 * v.oneWayMs);
   }
-  for (const auto& [peer, delayS] : now) {
-    const auto it = sharerDelaysS_.find(peer);
-    if (it != sharerDelaysS_.end() && it->second == delayS) continue;
-    RemoteUpdate delay;
-    delay.kind = RemoteUpdate::Kind::SharedDelay;
-    delay.object = object;
-    delay.peer = peer;
-    delay.oneWayS = delayS;
-    if (!loopOf(service_).postRemote(delay)) {
-      now.erase(peer);  // passed on at the next tick
-      break;
-    }
+  for (const PeerId peer : sharers_) {
+    if (!now.count(peer) && !post(RemoteUpdate::Kind::SharedLeft, peer, 0.0))
+      now.insert(peer);  // again next tick
   }
-  sharerDelaysS_ = std::move(now);
+  sharers_ = std::move(now);
   const SharedSnapshot& o = s.objects[object].shared;
   ++shared_.ticks;
   if (o.counted > 0) {
     ++shared_.coupledTicks;
     shared_.sumApartM += o.apartM;
     shared_.maxApartM = std::max(shared_.maxApartM, o.apartM);
+    shared_.maxStiffnessShare = std::max(shared_.maxStiffnessShare, o.stiffnessShare);
     if (o.divergent) ++shared_.divergentTicks;
   }
   shared_.minObservedJ = std::min(shared_.minObservedJ, o.observedJ);

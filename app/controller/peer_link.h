@@ -14,8 +14,8 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 #include <asio/io_context.hpp>
@@ -41,8 +41,9 @@ struct SharedLinkStats {
   std::uint64_t divergentTicks = 0;  ///< of them, divergent here
   double sumApartM = 0.0;            ///< over the coupled ticks
   double maxApartM = 0.0;
-  double minObservedJ = 0.0;  ///< the passivity observer's least
-  double inJ = 0.0;           ///< at the last tick
+  double maxStiffnessShare = 0.0;  ///< of the handle's stiffness (SharedCoupling::stiffnessShare)
+  double minObservedJ = 0.0;       ///< the passivity observer's least
+  double inJ = 0.0;                ///< at the last tick
   double dissipatedJ = 0.0;
   std::uint64_t sharedStates = 0;  ///< other instances' states queued
 };
@@ -92,7 +93,7 @@ private:
   int shareObject_ = -1;
   bool sharing_ = false;
   std::optional<std::chrono::steady_clock::time_point> followedSince_;
-  std::map<PeerId, double> sharerDelaysS_;  ///< as last passed on
+  std::set<PeerId> sharers_;  ///< the other sharers as last passed on
   SharedLinkStats shared_;
   bool stopped_ = false;
   PeerLinkCounts counts_;

@@ -24,7 +24,6 @@ bool SharedObjectPort::take(PeerId peer, const RemoteSample& sample, double inJ,
     if (r == nullptr) return false;
     *r = Remote{};
     r->peer = peer;
-    r->firstArrivalUs = arrivalUs;
   }
   if (!r->buffer.push(sample, arrivalUs)) return false;
   r->inJ = std::max(r->inJ, inJ);  // cumulative: an overtaken one is older
@@ -33,7 +32,7 @@ bool SharedObjectPort::take(PeerId peer, const RemoteSample& sample, double inJ,
 }
 
 void SharedObjectPort::setDelay(PeerId peer, double oneWayS) noexcept {
-  if (Remote* r = find(peer)) r->oneWayS = oneWayS > 0.0 ? oneWayS : 0.0;
+  if (Remote* r = find(peer)) r->oneWayS = oneWayS;
 }
 
 void SharedObjectPort::drop(PeerId peer) noexcept {
@@ -50,11 +49,12 @@ const SharedObjectPort::Frame& SharedObjectPort::step(std::int64_t nowUs, const 
   for (Remote& r : remotes_) {
     if (r.peer == kNoPeer) continue;
     RigidBodyState state;
-    if (!r.buffer.playOut(nowUs, state)) continue;
+    if (!(r.oneWayS >= 0.0) || !r.buffer.playOut(nowUs, state)) continue;
+    if (r.rampStartUs < 0) r.rampStartUs = nowUs;
     const double silentS =
         1e-6 * static_cast<double>(std::max<std::int64_t>(nowUs - r.newestArrivalUs - kSilentUs, 0));
     const double ramp = std::clamp(
-        static_cast<double>(nowUs - r.firstArrivalUs) / static_cast<double>(kJoinRampUs), 0.0, 1.0);
+        static_cast<double>(nowUs - r.rampStartUs) / static_cast<double>(kJoinRampUs), 0.0, 1.0);
     const double weight = delayWeight(r.oneWayS + silentS) * ramp;
     if (r.dropped && weight == 0.0 && ramp == 1.0) {
       r = Remote{};  // faded out: the slot is free

@@ -7,9 +7,10 @@
 ///
 /// A remote instance's delay for its weight is its one-way delay, plus how long its stream
 /// has been silent beyond kSilentUs (a 100 Hz stream's gaps do not ripple the weight; one
-/// that stops fades out within a second of it). A new instance's weight ramps in over
-/// kJoinRampUs, and a dropped one is kept until its weight has faded: no one who joins,
-/// leaves or dies changes any force by a step.
+/// that stops fades out within a second of it). An instance counts only once its delay has
+/// been measured (before, the safe weight is none: it may be a second old), and its weight
+/// then ramps in over kJoinRampUs; a dropped one is kept until its weight has faded: no one
+/// who joins, leaves or dies changes any force by a step.
 ///
 /// Haptic thread only: fixed capacity, noexcept, no allocation.
 
@@ -48,7 +49,7 @@ public:
   /// arrived at `arrivalUs` (local clock). A peer not seen before takes a free slot; with
   /// none free its samples are dropped (false).
   bool take(PeerId peer, const RemoteSample& sample, double inJ, std::int64_t arrivalUs) noexcept;
-  /// `peer`'s measured one-way delay, s (< 0: not measured; then 0 is assumed).
+  /// `peer`'s measured one-way delay, s (< 0: not measured; its instance does not count).
   void setDelay(PeerId peer, double oneWayS) noexcept;
   /// `peer` left or died: its stream ages from its last sample and its slot is freed once
   /// its weight has faded.
@@ -65,9 +66,9 @@ private:
   struct Remote {
     PeerId peer = kNoPeer;  ///< kNoPeer: a free slot
     JitterBuffer buffer = JitterBuffer();
-    double oneWayS = 0.0;
+    double oneWayS = -1.0;  ///< < 0: not measured
     double inJ = 0.0;
-    std::int64_t firstArrivalUs = 0;
+    std::int64_t rampStartUs = -1;  ///< the first frame it counted in (< 0: not yet)
     std::int64_t newestArrivalUs = 0;
     bool dropped = false;
   };

@@ -65,7 +65,7 @@ void pushScenario(PeerCommand& test, const Path& path) {
   grab.mutable_grab()->set_device("client");
   const pb::ServerMessage grabbed = clients[0]->request(grab);
   ASSERT_TRUE(grabbed.has_done()) << grabbed.DebugString();
-  slideHandle(*clients[0], "left", 0.0, 0.015);
+  slideHandle(*clients[0], "left", {0.0, 0.0, 0.0}, {0.015, 0.0, 0.0});
   // while the left box is pressed into the middle one: the middle one's owner feels it
   // through its contacts, and on every peer the left box stays out of the middle one
   // (until the middle box's owner has felt it and 2 s more; a sanitizer's build is slower)
@@ -91,7 +91,7 @@ void pushScenario(PeerCommand& test, const Path& path) {
   EXPECT_LT(deepestM, 0.1 * kBoxesVoxelM);
   const double pushedM = positionOf(newestUpdate(*clients[0]).objects(0)).x;
   EXPECT_GT(pushedM, 0.003) << "the left box was not pushed";
-  slideHandle(*clients[0], "left", 0.015, 0.0);
+  slideHandle(*clients[0], "left", {0.015, 0.0, 0.0}, {0.0, 0.0, 0.0});
 
   // apart and at rest, every peer shows every box where its owner has it (waiting up to
   // 30 s for them to settle and their states to arrive)

@@ -1,10 +1,12 @@
-// Shared objects (type-2, issue 14), run as the real executables: two `voxhap peer`s share
-// the middle box of the boxes scene, a third watches it, each behind its own impairment
-// relay or directly. One user drags the box 10 mm along y (free of the other boxes); the other peer's
-// instance, which nobody holds there, follows through the coupling. Front-end clients read what every peer
-// shows. Every wait is bounded; no assertion is about how long anything took.
+// Shared objects (type-2, issue 14), run as the real executables: `voxhap peer`s share
+// the middle box of the boxes scene and one more watches it, each behind its own
+// impairment relay or directly. The first sharer's user drags the box 10 mm along y (free
+// of the other boxes) and lets go; the other sharers' instances, which nobody holds there,
+// follow through the coupling. Front-end clients read what every peer shows. Every wait
+// is bounded; no assertion is about how long anything took.
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <thread>
@@ -25,128 +27,221 @@ namespace pb = net::pb;
 class SharedObjectCommand : public PeerProcessTest {};
 
 constexpr int kMiddle = 1;
+constexpr double kTenthVoxelM = 0.1 * kBoxesVoxelM;
+/// How far below zero a passivity observer may dip (see where it is checked), J: a
+/// thousandth of the energy a 10 mm drag puts in (about 0.09 J).
+constexpr double kObserverToleranceJ = 1e-4;
 
-struct ShareFigures {
-  double maxApartM = 0.0;      ///< the two instances, as their front ends showed them
-  double settledApartM = 0.0;  ///< at the end
-  double followedM = 0.0;      ///< how far the unheld instance came along y
-  double watcherOffM = 0.0;    ///< the watcher's box from the owning sharer's instance, at the end
-};
+glm::dvec3 middleOf(net::FrontendClient& client) {
+  return positionOf(newestUpdate(client).objects(kMiddle));
+}
 
-/// a and b share the middle box, c watches it; a's user drags it 10 mm along y.
-ShareFigures shareScenario(SharedObjectCommand& test, const Path& path, bool passivity) {
-  ShareFigures figures;
-  PeerPlacement placement(test, path);
-  std::vector<std::string> share = {"--share", "middle"};
-  if (!passivity) share.push_back("--no-passivity");
-  const std::string tag = path.delay.empty() ? "direct" : path.delay;
-  auto with = [&share](std::vector<std::string> args) {
-    args.insert(args.end(), share.begin(), share.end());
-    return args;
-  };
-  PeerProcessTest::Peer a = test.startPeer("a" + tag, placement.place("a", with({"--name", "ann"})));
-  if (a.udpPort == 0) return figures;
-  const std::string at = PeerPlacement::advertised(a);
-  PeerProcessTest::Peer b =
-      test.startPeer("b" + tag, placement.place("b", with({"--join", at, "--name", "bob"})));
-  PeerProcessTest::Peer c = test.startPeer("c" + tag, placement.place("c", {"--join", at, "--name", "cyd"}));
-  if (b.udpPort == 0 || c.udpPort == 0) return figures;
-  EXPECT_TRUE(b.child->waitForStderr("sharing 'middle' with 1 other", 60s)) << b.child->err();
-
-  std::array<PeerProcessTest::Peer*, 3> peers = {&a, &b, &c};
+/// Connects a front end to each of `peers`, subscribed.
+std::vector<std::unique_ptr<net::FrontendClient>> clientsOf(const std::vector<PeerProcessTest::Peer*>& peers,
+                                                            const std::string& name) {
   std::vector<std::unique_ptr<net::FrontendClient>> clients;
   for (PeerProcessTest::Peer* p : peers) {
     clients.push_back(std::make_unique<net::FrontendClient>("127.0.0.1", p->frontendPort, 5000ms));
-    clients.back()->hello("shared object test");
+    clients.back()->hello(name);
     subscribe(*clients.back());
   }
+  return clients;
+}
+
+/// The largest distance of the other instances from the first, as `clients` show them.
+double apartFromFirst(std::vector<std::unique_ptr<net::FrontendClient>>& clients, std::size_t sharers) {
+  const glm::dvec3 first = middleOf(*clients[0]);
+  double apart = 0.0;
+  for (std::size_t i = 1; i < sharers; ++i)
+    apart = std::max(apart, glm::length(middleOf(*clients[i]) - first));
+  return apart;
+}
+
+struct ShareFigures {
+  double maxApartM = 0.0;          ///< of the instances from the dragged one, while dragged
+  double draggedApartM = 0.0;      ///< when they had settled after the drag (or after 30 s)
+  double followedM = 0.0;          ///< how far the least moved unheld instance came along y
+  double maxStiffnessShare = 0.0;  ///< of the sharers' couplings
+  double releasedApartM = 0.0;     ///< at rest after the user let go (or after 30 s)
+  double watcherOffM = 0.0;        ///< the watcher's box from the owning sharer's instance, at the end
+};
+
+/// Waits (at most 30 s) until the instances have been within a tenth of a voxel of the
+/// first and still for half a second; returns how far apart they are then.
+double settle(std::vector<std::unique_ptr<net::FrontendClient>>& clients, std::size_t sharers) {
+  int steady = 0;
+  double apart = 0.0;
+  glm::dvec3 before = middleOf(*clients[0]);
+  for (const auto giveUp = std::chrono::steady_clock::now() + 30s;
+       steady < 10 && std::chrono::steady_clock::now() < giveUp;) {
+    std::this_thread::sleep_for(50ms);
+    apart = apartFromFirst(clients, sharers);
+    const glm::dvec3 now = middleOf(*clients[0]);
+    steady = apart < kTenthVoxelM && glm::length(now - before) < 1e-6 ? steady + 1 : 0;
+    before = now;
+  }
+  return apart;
+}
+
+struct Sharing {
+  std::size_t sharers = 2;
+  bool passivity = true;
+  double dragM = 0.010;
+  std::vector<std::string> extra;  ///< to every peer
+};
+
+/// `how.sharers` peers share the middle box and one more watches it, on `path`; the first
+/// sharer's user drags it along y and lets go.
+ShareFigures shareScenario(SharedObjectCommand& test, const Path& path, const Sharing& how) {
+  const std::size_t sharers = how.sharers;
+  const bool passivity = how.passivity;
+  const std::vector<std::string>& extra = how.extra;
+  ShareFigures figures;
+  PeerPlacement placement(test, path);
+  std::string tag = path.delay.empty() ? "direct" : path.delay;
+  tag += ", " + std::to_string(sharers) + " sharers";
+  if (!passivity) tag += ", no passivity";
+  auto args = [&](std::vector<std::string> own, bool share) {
+    own.insert(own.end(), extra.begin(), extra.end());
+    if (share) own.insert(own.end(), {"--share", "middle"});
+    if (share && !passivity) own.push_back("--no-passivity");
+    return own;
+  };
+  // names of their own: a child's output file is named after it
+  const std::string prefix = (path.delay.empty() ? std::string("direct") : path.delay) + "-";
+  std::vector<PeerProcessTest::Peer> peers;
+  peers.push_back(
+      test.startPeer(prefix + "s0", placement.place(prefix + "s0", args({"--name", "s0"}, true))));
+  if (peers[0].udpPort == 0) return figures;
+  const std::string at = PeerPlacement::advertised(peers[0]);
+  for (std::size_t i = 1; i <= sharers; ++i) {
+    const bool watcher = i == sharers;
+    const std::string name = watcher ? std::string("watcher") : std::string("s").append(std::to_string(i));
+    peers.push_back(test.startPeer(
+        prefix + name, placement.place(prefix + name, args({"--join", at, "--name", name}, !watcher))));
+    if (peers.back().udpPort == 0) return figures;
+  }
+  for (std::size_t i = 1; i < sharers; ++i) {
+    EXPECT_TRUE(peers[i].child->waitForStderr("sharing 'middle' with", 60s)) << peers[i].child->err();
+  }
+  std::vector<PeerProcessTest::Peer*> all;
+  for (PeerProcessTest::Peer& p : peers) all.push_back(&p);
+  auto clients = clientsOf(all, "shared object test");
   pb::ClientMessage grab;
   grab.mutable_grab()->set_object("middle");
   grab.mutable_grab()->set_device("client");
   const pb::ServerMessage grabbed = clients[0]->request(grab);
   EXPECT_TRUE(grabbed.has_done()) << grabbed.DebugString();
-  std::this_thread::sleep_for(1s);  // b's instance has ramped into a's coupling
-  const double startY = positionOf(newestUpdate(*clients[1]).objects(kMiddle)).y;
-  std::atomic<bool> sliding{true};
+  std::this_thread::sleep_for(1s);  // the joiners' instances have ramped into the coupling
+  std::vector<double> startY;
+  for (std::size_t i = 0; i < sharers; ++i) startY.push_back(middleOf(*clients[i]).y);
+
   // (its own clients: a client serves one thread)
+  std::atomic<bool> dragging{true};
   std::thread watch([&] {
-    net::FrontendClient ca("127.0.0.1", a.frontendPort, 5000ms), cb("127.0.0.1", b.frontendPort, 5000ms);
-    for (net::FrontendClient* client : {&ca, &cb}) {
-      client->hello("shared object watch");
-      subscribe(*client);
-    }
-    while (sliding.load()) {
-      const glm::dvec3 pa = positionOf(newestUpdate(ca).objects(kMiddle));
-      const glm::dvec3 pb = positionOf(newestUpdate(cb).objects(kMiddle));
-      figures.maxApartM = std::max(figures.maxApartM, glm::length(pa - pb));
+    auto watching = clientsOf(std::vector<PeerProcessTest::Peer*>(all.begin(), all.begin() + sharers),
+                              "shared object watch");
+    while (dragging.load()) {
+      figures.maxApartM = std::max(figures.maxApartM, apartFromFirst(watching, sharers));
       std::this_thread::sleep_for(20ms);
     }
   });
-  slideHandle(*clients[0], "middle", 0.0, 0.010, 1);
-  // until the instances agree within a tenth of a voxel for half a second (at most 30 s)
-  int agreeing = 0;
-  std::array<pb::FrameUpdate, 3> last;
-  for (const auto giveUp = std::chrono::steady_clock::now() + 30s;
-       agreeing < 10 && std::chrono::steady_clock::now() < giveUp;) {
-    std::this_thread::sleep_for(50ms);
-    for (std::size_t i = 0; i < 3; ++i) last[i] = newestUpdate(*clients[i]);
-    figures.settledApartM =
-        glm::length(positionOf(last[0].objects(kMiddle)) - positionOf(last[1].objects(kMiddle)));
-    agreeing = figures.settledApartM < 0.1 * kBoxesVoxelM ? agreeing + 1 : 0;
-  }
-  sliding = false;
+  slideHandle(*clients[0], "middle", {0.0, 0.0, 0.0}, {0.0, how.dragM, 0.0});
+  figures.draggedApartM = settle(clients, sharers);
+  dragging = false;
   watch.join();
-  figures.followedM = positionOf(last[1].objects(kMiddle)).y - startY;
-  // the watcher shows the lowest-numbered sharer's instance
-  const std::uint64_t owner = last[2].objects(kMiddle).owner_peer();
-  EXPECT_EQ(owner, std::min(std::stoull(a.id), std::stoull(b.id)));
-  const std::size_t owning = std::to_string(owner) == a.id ? 0 : 1;
-  figures.watcherOffM =
-      glm::length(positionOf(last[2].objects(kMiddle)) - positionOf(last[owning].objects(kMiddle)));
+  figures.followedM = 1.0;
+  for (std::size_t i = 1; i < sharers; ++i)
+    figures.followedM = std::min(figures.followedM, middleOf(*clients[i]).y - startY[i]);
 
-  std::array<nlohmann::json, 3> summaries;
-  for (std::size_t i = 3; i-- > 0;) summaries[i] = PeerProcessTest::stop(*peers[i]);  // the watcher first
-  for (std::size_t i = 0; i < 3; ++i) {
+  pb::ClientMessage release;
+  release.mutable_release()->set_object("middle");
+  EXPECT_TRUE(clients[0]->request(release).has_done());
+  figures.releasedApartM = settle(clients, sharers);
+  // the watcher shows the lowest-numbered sharer's instance
+  const pb::FrameUpdate watched = newestUpdate(*clients[sharers]);
+  std::size_t owning = 0;
+  for (std::size_t i = 1; i < sharers; ++i)
+    if (std::stoull(peers[i].id) < std::stoull(peers[owning].id)) owning = i;
+  EXPECT_EQ(std::to_string(watched.objects(kMiddle).owner_peer()), peers[owning].id);
+  figures.watcherOffM = glm::length(positionOf(watched.objects(kMiddle)) - middleOf(*clients[owning]));
+
+  std::vector<nlohmann::json> summaries(peers.size());
+  for (std::size_t i = peers.size(); i-- > 0;)
+    summaries[i] = PeerProcessTest::stop(peers[i]);  // the watcher first
+  double dissipatedJ = 0.0, leastObservedJ = 0.0;
+  for (std::size_t i = 0; i < peers.size(); ++i) {
     SCOPED_TRACE("peer " + std::to_string(i) + ": " + summaries[i].dump());
     const nlohmann::json& shared = summaries[i].at("peer").at("shared");
     EXPECT_EQ(shared.size(), 1u);
     if (shared.size() != 1) continue;
     EXPECT_EQ(shared[0].at("object"), "middle");
-    EXPECT_EQ(shared[0].at("shared_here"), i < 2);
+    EXPECT_EQ(shared[0].at("shared_here"), i < sharers);
     EXPECT_TRUE(shared[0].at("divergent_at").empty());
-    if (i == 2) {
-      EXPECT_EQ(shared[0].at("other_sharers").size(), 2u);
+    if (i == sharers) {
+      EXPECT_EQ(shared[0].at("other_sharers").size(), sharers);
       continue;
     }
     const nlohmann::json& coupling = shared[0].at("coupling");
     EXPECT_GT(coupling.at("coupled_ticks").get<std::uint64_t>(), 100u);
     EXPECT_EQ(coupling.at("divergent_ticks"), 0);
-    if (passivity) {
-      EXPECT_GE(coupling.at("min_observed_j").get<double>(), -1e-6);
-    }
-    std::printf(
-        "[ figures  ] %s%s, peer %zu: mean apart %.3f mm, max %.3f mm; in %.3g J, dissipated %.3g J\n",
-        tag.c_str(), passivity ? "" : " (no passivity)", i, coupling.at("mean_apart_mm").get<double>(),
-        coupling.at("max_apart_mm").get<double>(), coupling.at("in_j").get<double>(),
-        coupling.at("dissipated_j").get<double>());
+    leastObservedJ = std::min(leastObservedJ, coupling.at("min_observed_j").get<double>());
+    figures.maxStiffnessShare =
+        std::max(figures.maxStiffnessShare, coupling.at("max_stiffness_share").get<double>());
+    dissipatedJ += coupling.at("dissipated_j").get<double>();
+  }
+  if (passivity) {
+    // the observer charges the work each step did along the coupling, gravity's and the
+    // contacts' share included, which the controller cannot foresee: a dip of that order
+    EXPECT_GE(leastObservedJ, -kObserverToleranceJ);
   }
   if (::testing::Test::HasFailure()) {
-    for (std::size_t i = 0; i < 3; ++i) std::printf("---- peer %zu\n%s\n", i, peers[i]->child->err().c_str());
+    for (std::size_t i = 0; i < peers.size(); ++i)
+      std::printf("---- peer %zu\n%s\n", i, peers[i].child->err().c_str());
   }
   std::printf(
-      "[ figures  ] %s%s: instances apart at most %.3f mm while dragged 10 mm, %.4f mm at the end; the "
-      "unheld "
-      "one came %.2f mm; the watcher %.4f mm off the owning instance\n",
-      tag.c_str(), passivity ? "" : " (no passivity)", figures.maxApartM * 1e3, figures.settledApartM * 1e3,
-      figures.followedM * 1e3, figures.watcherOffM * 1e3);
+      "[ figures  ] %s: instances apart at most %.3f mm while dragged %.0f mm, %.4f mm after; the unheld "
+      "came "
+      "%.2f mm; %.4f mm apart at rest after the release; watcher %.4f mm off the owning instance; passivity "
+      "observer at least %.3g J, %.3g J dissipated; stiffness share at most %.3f\n",
+      tag.c_str(), figures.maxApartM * 1e3, how.dragM * 1e3, figures.draggedApartM * 1e3,
+      figures.followedM * 1e3, figures.releasedApartM * 1e3, figures.watcherOffM * 1e3, leastObservedJ,
+      dissipatedJ, figures.maxStiffnessShare);
   return figures;
 }
 
+/// What every coupled case must show.
+void expectCoupled(const ShareFigures& f) {
+  EXPECT_LT(f.draggedApartM, kTenthVoxelM);
+  EXPECT_GT(f.followedM, 0.009);
+  EXPECT_LT(f.releasedApartM, kTenthVoxelM);
+  EXPECT_LT(f.watcherOffM, kTenthVoxelM);
+}
+
 TEST_F(SharedObjectCommand, TwoPeersShareABoxTheUnheldInstanceFollowsAndAWatcherSeesTheOwningOne) {
-  const ShareFigures f = shareScenario(*this, {}, true);
-  EXPECT_LT(f.settledApartM, 0.1 * kBoxesVoxelM);
-  EXPECT_GT(f.followedM, 0.008);
-  EXPECT_LT(f.watcherOffM, 0.1 * kBoxesVoxelM);
+  expectCoupled(shareScenario(*this, {}, {}));
+}
+
+TEST_F(SharedObjectCommand, TwoSharersThroughRelaysOf100And300MillisecondsWith50OfJitterLosingAFifth) {
+  for (const char* delay : {"100", "300"}) {
+    SCOPED_TRACE(std::string(delay) + " ms");
+    expectCoupled(shareScenario(*this, {delay, "20%", "50"}, {}));
+  }
+}
+
+TEST_F(SharedObjectCommand, FiveSharersThroughRelaysOf100Milliseconds) {
+  expectCoupled(shareScenario(*this, {"100", "20%", "50"},
+                              {.sharers = 5, .passivity = true, .dragM = 0.010, .extra = {}}));
+}
+
+TEST_F(SharedObjectCommand, AtOneSecondOfDelayTheCouplingHasAlmostNoStiffnessLeft) {
+  // the weight of an instance a second old is zero (paper §6.1); the measured delay, ± the
+  // jitter and its filter's hysteresis, leaves a tenth at most
+  const ShareFigures f =
+      shareScenario(*this, {"1000", "20%", "50"},
+                    {.sharers = 2, .passivity = true, .dragM = 0.005, .extra = {"--timeout", "5"}});
+  EXPECT_GT(f.maxStiffnessShare, 0.0);
+  EXPECT_LT(f.maxStiffnessShare, 0.1);
 }
 
 }  // namespace

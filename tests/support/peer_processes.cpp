@@ -1,5 +1,6 @@
 #include "support/peer_processes.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -8,6 +9,7 @@
 
 #include <asio/io_context.hpp>
 #include <asio/ip/udp.hpp>
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "support/gltf_fixtures.h"
@@ -44,10 +46,11 @@ void PeerProcessTest::SetUp() {
 }
 
 PeerProcessTest::Peer PeerProcessTest::startPeer(const std::string& name, std::vector<std::string> extra) {
-  std::vector<std::string> args = {
-      "peer",       "boxes.glb",     "--move",       "left",      "--move", "middle",
-      "--move",     "right",         "--voxel-size", "1mm",       "--key",  "session.key",
-      "--headless", "--no-realtime", "--json",       "--timeout", "1"};
+  std::vector<std::string> args = {"peer",   "boxes.glb",   "--move",     "left",          "--move",
+                                   "middle", "--move",      "right",      "--voxel-size",  "1mm",
+                                   "--key",  "session.key", "--headless", "--no-realtime", "--json"};
+  if (std::find(extra.begin(), extra.end(), "--timeout") == extra.end())
+    args.insert(args.end(), {"--timeout", "1"});
   args.insert(args.end(), extra.begin(), extra.end());
   Peer p;
   p.child = std::make_unique<ChildProcess>(VOXHAP_EXE, args, dir_, name);
@@ -114,16 +117,17 @@ void subscribe(net::FrontendClient& client) {
   ASSERT_TRUE(client.request(subscribe).has_done());
 }
 
-void slideHandle(net::FrontendClient& client, const std::string& object, double fromM, double toM, int axis) {
-  const int steps = static_cast<int>(std::lround(std::abs(toM - fromM) / 0.001));
+void slideHandle(net::FrontendClient& client, const std::string& object, const glm::dvec3& fromM,
+                 const glm::dvec3& toM) {
+  const int steps = std::max(1, static_cast<int>(std::lround(glm::length(toM - fromM) / 0.001)));
   for (int i = 1; i <= steps; ++i) {
     pb::ClientMessage move;
     move.mutable_move_handle()->set_object(object);
+    const glm::dvec3 at = fromM + (toM - fromM) * (static_cast<double>(i) / steps);
     pb::Vec3& position = *move.mutable_move_handle()->mutable_handle()->mutable_position_m();
-    const double at = fromM + (toM - fromM) * i / steps;
-    if (axis == 0) position.set_x(at);
-    if (axis == 1) position.set_y(at);
-    if (axis == 2) position.set_z(at);
+    position.set_x(at.x);
+    position.set_y(at.y);
+    position.set_z(at.z);
     move.mutable_move_handle()->mutable_handle()->mutable_orientation()->set_w(1.0);
     const pb::ServerMessage reply = client.request(move);
     ASSERT_TRUE(reply.has_done()) << reply.DebugString();

@@ -42,8 +42,8 @@ public:
 
   const std::filesystem::path& dir() const { return dir_; }
 
-  /// Starts a headless peer of the boxes scene with `extra` arguments; waits until it
-  /// listens for peers and front ends.
+  /// Starts a headless peer of the boxes scene with `extra` arguments (and --timeout 1
+  /// unless they say otherwise); waits until it listens for peers and front ends.
   Peer startPeer(const std::string& name, std::vector<std::string> extra);
   /// Peer `p`'s JSON summary once it has stopped after SIGTERM.
   static nlohmann::json stop(Peer& p);
@@ -84,9 +84,9 @@ glm::dvec3 positionOf(const net::pb::ObjectState& o);
 /// Subscribes `client` (hello done) to frame updates at 50 Hz.
 void subscribe(net::FrontendClient& client);
 
-/// Moves the handle of `object` on `client`'s controller along the scene's `axis` (0 x,
-/// 1 y, 2 z) to `toM` (from its place in the scene) in 1 mm steps every 20 ms.
-void slideHandle(net::FrontendClient& client, const std::string& object, double fromM, double toM,
-                 int axis = 0);
+/// Moves the handle of `object` on `client`'s controller in a straight line from `fromM`
+/// to `toM` (offsets from its place in the scene, m) in steps of 1 mm every 20 ms.
+void slideHandle(net::FrontendClient& client, const std::string& object, const glm::dvec3& fromM,
+                 const glm::dvec3& toM);
 
 }  // namespace voxhap::test

@@ -26,9 +26,12 @@ struct SharedObjectPortTest : testing::Test {
   }();
   SharedObjectPort port;
 
-  /// `peer`'s instance `away`, sent at 100 Hz from `fromUs` up to `toUs`, arriving at once.
+  /// `peer`'s instance `away`, sent at 100 Hz from `fromUs` up to `toUs`, arriving at once
+  /// (a one-way delay of 0), its ramp begun by a frame at `fromUs`.
   void stream(PeerId peer, std::int64_t fromUs, std::int64_t toUs) {
     for (std::int64_t t = fromUs; t <= toUs; t += kStreamUs) port.take(peer, {t, away}, 0.0, t);
+    port.setDelay(peer, 0.0);
+    forceXN(fromUs);
   }
   double forceXN(std::int64_t nowUs) {
     return port.step(nowUs, model, local, gains, false, kDtS).wrench.forceWorld.x;
@@ -44,6 +47,16 @@ TEST_F(SharedObjectPortTest, ARemoteInstancePullsAsTheCouplingSaysOnceRampedIn) 
   // its one-way delay lowers it as k(τ) says
   port.setDelay(7, 0.25);
   EXPECT_NEAR(forceXN(800'000), 0.75 * gains.linearStiffnessNPerM * 0.003, 1e-6);
+}
+
+TEST_F(SharedObjectPortTest, AnInstanceWhoseDelayIsNotMeasuredYetDoesNotCountThenRampsIn) {
+  for (std::int64_t t = 0; t <= 1'000'000; t += kStreamUs) port.take(7, {t, away}, 0.0, t);
+  EXPECT_EQ(forceXN(600'000), 0.0);
+  EXPECT_EQ(port.last().counted, 0u);
+  port.setDelay(7, 0.5);  // measured now: from nothing, without a step
+  EXPECT_EQ(forceXN(601'000), 0.0);
+  EXPECT_NEAR(forceXN(601'000 + SharedObjectPort::kJoinRampUs / 2), 0.25 * gains.linearStiffnessNPerM * 0.003,
+              1e-6);
 }
 
 TEST_F(SharedObjectPortTest, AStreamThatStopsFadesOutWithinASecondWithoutAStep) {
