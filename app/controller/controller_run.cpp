@@ -173,6 +173,19 @@ std::string whyNotGrab(net::PeerSession& peer, const SimModel& model, std::size_
          "'s: asked for it; it comes here once nobody holds it there; grab it again then";
 }
 
+/// The shared objects' sharers in `update`, and whether any of them sees its instance
+/// divergent.
+void annotateShared(const net::PeerSession& peer, net::pb::FrameUpdate& update) {
+  for (net::pb::ObjectState& o : *update.mutable_objects()) {
+    const std::vector<net::SharerView> others = peer.sharers(o.index());
+    if (peer.sharing(o.index())) o.add_sharer_peers(peer.self());
+    for (const net::SharerView& v : others) {
+      o.add_sharer_peers(v.peer);
+      if (v.divergent) o.set_divergent(true);
+    }
+  }
+}
+
 /// Every object somebody shares: its sharers, who of them sees it divergent, and (when
 /// this peer is one of them) how its coupling went.
 nlohmann::ordered_json sharedJson(const net::PeerSession& peer, const controller::PeerLink& link,
@@ -204,6 +217,7 @@ nlohmann::ordered_json sharedJson(const net::PeerSession& peer, const controller
                        {"min_observed_j", s.minObservedJ},
                        {"in_j", s.inJ},
                        {"dissipated_j", s.dissipatedJ},
+                       {"largest_force_step_n", s.largestForceStepN},
                        {"remote_instance_states", s.sharedStates}};
     }
     out.push_back(j);
@@ -340,8 +354,9 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
     console.info(realtimeLine(session->loop->realtime()));
   if (peer) {
     const SimModel& model = service.session()->built->model;
-    service.setPeerGuard({[&peer, &model](std::size_t object) { return whyNotGrab(*peer, model, object); },
-                          "in a peer session the scene, its sizes and the force layer are every peer's"});
+    service.setPeerHooks({[&peer, &model](std::size_t object) { return whyNotGrab(*peer, model, object); },
+                          "in a peer session the scene, its sizes and the force layer are every peer's",
+                          [&peer](net::pb::FrameUpdate& update) { annotateShared(*peer, update); }});
     link = std::make_unique<controller::PeerLink>(
         io, *peer, service,
         controller::PeerLinkOptions{options.peer->streamHz, options.peer->take, options.device,

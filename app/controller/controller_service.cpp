@@ -235,8 +235,8 @@ void ControllerService::grab(std::uint64_t client, const pb::Grab& request, pb::
   const int object = movingObject(request.object(), reply);
   if (object < 0) return;
   const auto i = static_cast<std::size_t>(object);
-  if (peerGuard_) {
-    if (const std::string why = peerGuard_->whyNotGrab(i); !why.empty()) {
+  if (peerHooks_) {
+    if (const std::string why = peerHooks_->whyNotGrab(i); !why.empty()) {
       fail(reply, why, "object");
       return;
     }
@@ -364,8 +364,8 @@ void ControllerService::setParameters(std::uint64_t client, std::uint64_t id,
     fail(reply, "a scene is loading already; wait for its reply");
     return;
   }
-  if (peerGuard_ && (rebuilds || request.has_force_layer())) {
-    fail(reply, peerGuard_->whyNotReload, rebuilds ? kind.errorField : "force_layer");
+  if (peerHooks_ && (rebuilds || request.has_force_layer())) {
+    fail(reply, peerHooks_->whyNotReload, rebuilds ? kind.errorField : "force_layer");
     return;
   }
 
@@ -520,7 +520,12 @@ void ControllerService::frameUpdate(pb::FrameUpdate& update) {
     out.set_contacts(o.contacts);
     out.set_travel_share(o.travelShare);
     out.set_owner_peer(o.owner);
+    if (o.shared.shared) {
+      out.set_divergent(o.shared.divergent);
+      out.set_shared_apart_m(o.shared.apartM);
+    }
   }
+  if (peerHooks_ && peerHooks_->annotate) peerHooks_->annotate(update);
 }
 
 void ControllerService::disconnected(std::uint64_t client) {
@@ -558,8 +563,8 @@ void ControllerService::load(std::uint64_t client, std::uint64_t id, const pb::L
     fail(reply, "a scene is loading already; wait for its reply");
     return;
   }
-  if (peerGuard_) {
-    fail(reply, peerGuard_->whyNotReload, kind.errorField);
+  if (peerHooks_) {
+    fail(reply, peerHooks_->whyNotReload, kind.errorField);
     return;
   }
   if (request.scene().empty()) {

@@ -65,12 +65,16 @@ struct ControllerSession {
   std::optional<SimState> start;  ///< where the loop starts (a peer's snapshot); none: as loaded
 };
 
-/// What a collaborative session (DESIGN §8) allows of a controller's clients: a grab only
-/// of what this peer owns, and no other scene or sizes than every peer's.
-struct PeerGuard {
+/// What a collaborative session (DESIGN §8) allows of a controller's clients (a grab only
+/// of what this peer owns or shares, and no other scene or sizes than every peer's), and
+/// what it adds to what they see.
+struct PeerHooks {
   /// Why `object` may not be grabbed here (empty: it may).
   std::function<std::string(std::size_t object)> whyNotGrab;
   std::string whyNotReload;  ///< why load_scene and size changes are refused
+  /// Adds what the session knows to a frame update (the shared objects' sharers, and the
+  /// divergence the others see); may be empty.
+  std::function<void(net::pb::FrameUpdate& update)> annotate;
 };
 
 /// Builds a session (all but its loop) for a LoadScene request, calling `progress` as it
@@ -99,7 +103,7 @@ public:
   /// How deferred replies and progress events reach a client (FrontendServer::send).
   void setSender(SendFn send) { send_ = std::move(send); }
   /// Makes this controller a peer's: grabs and reloads are checked by `guard`.
-  void setPeerGuard(PeerGuard guard) { peerGuard_ = std::move(guard); }
+  void setPeerHooks(PeerHooks guard) { peerHooks_ = std::move(guard); }
 
   void hello(net::pb::HelloReply& reply) override;
   void handle(std::uint64_t client, const net::pb::ClientMessage& request,
@@ -178,7 +182,7 @@ private:
   StandingSpaceMouse* spaceMouse(const std::string& device, const Pose& startWorld,
                                  net::pb::ServerMessage& reply);
   HapticLoopOptions loopOptions_;
-  std::optional<PeerGuard> peerGuard_;
+  std::optional<PeerHooks> peerHooks_;
   double couplingStiffnessShare_ = 1.0;  ///< of every coupling's stiffest (scaledCouplingGains)
   double couplingDampingRatio_ = kCouplingDampingRatio;
   std::uint32_t forceLayer_ = 0;  ///< as last set (the haptic thread takes it at its next frame)

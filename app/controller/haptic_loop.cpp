@@ -205,6 +205,7 @@ void HapticLoop::publish(FrameStatus status, std::uint64_t frame) noexcept {
     shared.inJ = p.inJ;
     shared.observedJ = p.observedJ;
     shared.dissipatedJ = p.dissipatedJ;
+    shared.largestForceStepN = p.largestForceStepN;
   }
   s.forceLayer = state_.forceLayer;
   s.status = status;

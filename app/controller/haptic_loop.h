@@ -67,11 +67,12 @@ struct SharedSnapshot {
   double apartM = 0.0;        ///< from the others' weighted average
   double apartRad = 0.0;
   bool divergent = false;
-  double stiffnessShare = 0.0;  ///< of the handle's stiffness (Σw²/Σw)
-  glm::dvec3 forceWorld{0.0};   ///< the coupling's on the instance, after passivity, N
-  double inJ = 0.0;             ///< energy in at the port so far
-  double observedJ = 0.0;       ///< the passivity observer
-  double dissipatedJ = 0.0;     ///< by the passivity controller so far
+  double stiffnessShare = 0.0;     ///< of the handle's stiffness (Σw²/Σw)
+  glm::dvec3 forceWorld{0.0};      ///< the coupling's on the instance, after passivity, N
+  double inJ = 0.0;                ///< energy in at the port so far
+  double observedJ = 0.0;          ///< the passivity observer
+  double dissipatedJ = 0.0;        ///< by the passivity controller so far
+  double largestForceStepN = 0.0;  ///< of the coupling's force from one frame to the next so far, N
 };
 
 /// One moving object in a snapshot.

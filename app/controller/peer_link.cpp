@@ -164,6 +164,7 @@ void PeerLink::tickShared(const FrameSnapshot& s) {
   shared_.minObservedJ = std::min(shared_.minObservedJ, o.observedJ);
   shared_.inJ = o.inJ;
   shared_.dissipatedJ = o.dissipatedJ;
+  shared_.largestForceStepN = o.largestForceStepN;
 }
 
 void PeerLink::ownerChanged(std::uint32_t object, PeerId owner) {

@@ -45,6 +45,7 @@ struct SharedLinkStats {
   double minObservedJ = 0.0;       ///< the passivity observer's least
   double inJ = 0.0;                ///< at the last tick
   double dissipatedJ = 0.0;
+  double largestForceStepN = 0.0;  ///< of the coupling's force from one frame to the next
   std::uint64_t sharedStates = 0;  ///< other instances' states queued
 };
 

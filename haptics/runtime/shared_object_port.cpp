@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <span>
 
+#include <glm/geometric.hpp>
+
 namespace voxhap {
 
 SharedObjectPort::Remote* SharedObjectPort::find(PeerId peer) noexcept {
@@ -53,8 +55,8 @@ const SharedObjectPort::Frame& SharedObjectPort::step(std::int64_t nowUs, const 
     if (r.rampStartUs < 0) r.rampStartUs = nowUs;
     const double silentS =
         1e-6 * static_cast<double>(std::max<std::int64_t>(nowUs - r.newestArrivalUs - kSilentUs, 0));
-    const double ramp = std::clamp(
-        static_cast<double>(nowUs - r.rampStartUs) / static_cast<double>(kJoinRampUs), 0.0, 1.0);
+    const double ramp =
+        std::clamp(static_cast<double>(nowUs - r.rampStartUs) / static_cast<double>(kJoinRampUs), 0.0, 1.0);
     const double weight = delayWeight(r.oneWayS + silentS) * ramp;
     if (r.dropped && weight == 0.0 && ramp == 1.0) {
       r = Remote{};  // faded out: the slot is free
@@ -71,6 +73,8 @@ const SharedObjectPort::Frame& SharedObjectPort::step(std::int64_t nowUs, const 
   const CouplingWrench w =
       passivity ? passivity_.passive(frame_.coupling.onLocal, model, local, othersInJ, n + 1, dtS)
                 : frame_.coupling.onLocal;
+  frame_.largestForceStepN =
+      std::max(frame_.largestForceStepN, glm::length(w.forceWorld - frame_.wrench.forceWorld));
   frame_.wrench = {w.forceWorld, w.torqueWorld};
   frame_.inJ = passivity_.inJ();
   frame_.observedJ = passivity ? passivity_.observedJ() : 0.0;

@@ -37,12 +37,13 @@ public:
 
   /// The port's figures after a frame.
   struct Frame {
-    ExternalWrench wrench;     ///< on the local instance
-    SharedCoupling coupling;   ///< before passivity
-    std::size_t counted = 0;   ///< remote instances with a weight above zero
-    double inJ = 0.0;          ///< energy in at this port so far (0 when passivity is off)
-    double observedJ = 0.0;    ///< the passivity observer (0 when off)
-    double dissipatedJ = 0.0;  ///< by the passivity controller so far
+    ExternalWrench wrench;           ///< on the local instance
+    SharedCoupling coupling;         ///< before passivity
+    std::size_t counted = 0;         ///< remote instances with a weight above zero
+    double inJ = 0.0;                ///< energy in at this port so far (0 when passivity is off)
+    double observedJ = 0.0;          ///< the passivity observer (0 when off)
+    double dissipatedJ = 0.0;        ///< by the passivity controller so far
+    double largestForceStepN = 0.0;  ///< of the wrench's force from one frame to the next so far
   };
 
   /// Takes `peer`'s instance as sent, with the energy it has put into its port so far,

@@ -8,13 +8,18 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <fstream>
+#include <numbers>
 #include <thread>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "haptics/dynamics/virtual_coupling.h"
 #include "support/newest_update.h"
 #include "support/peer_processes.h"
 
@@ -242,6 +247,130 @@ TEST_F(SharedObjectCommand, AtOneSecondOfDelayTheCouplingHasAlmostNoStiffnessLef
                     {.sharers = 2, .passivity = true, .dragM = 0.005, .extra = {"--timeout", "5"}});
   EXPECT_GT(f.maxStiffnessShare, 0.0);
   EXPECT_LT(f.maxStiffnessShare, 0.1);
+}
+
+/// Grabs the middle box with the front end's handle on `client`'s peer.
+void grabMiddle(net::FrontendClient& client) {
+  pb::ClientMessage grab;
+  grab.mutable_grab()->set_object("middle");
+  grab.mutable_grab()->set_device("client");
+  const pb::ServerMessage grabbed = client.request(grab);
+  EXPECT_TRUE(grabbed.has_done()) << grabbed.DebugString();
+}
+
+TEST_F(SharedObjectCommand, SharersJoinLeaveAndDieWithoutAStepInTheCouplingsForce) {
+  // s0's user moves the box to and fro along y, ±5 mm every 4 s, smoothly (a handle that
+  // jumps makes steps of its own)
+  {
+    std::ofstream script(dir_ / "sway.txt");
+    for (int k = 0; k <= 1200; ++k) {
+      const double t = 0.05 * k;
+      script << t << " 1 0 0 0 0 " << 0.005 * std::sin(2.0 * std::numbers::pi * t / 4.0) << " 0\n";
+    }
+  }
+  Peer s0 = startPeer("s0", {"--share", "middle", "--device", "script:sway.txt", "--name", "s0"});
+  ASSERT_NE(s0.udpPort, 0);
+  const std::string at = PeerPlacement::advertised(s0);
+  Peer s1 = startPeer("s1", {"--join", at, "--share", "middle", "--name", "s1"});
+  Peer s2 = startPeer("s2", {"--join", at, "--share", "middle", "--name", "s2"});
+  ASSERT_TRUE(s1.udpPort != 0 && s2.udpPort != 0);
+  for (Peer* p : {&s1, &s2})
+    EXPECT_TRUE(p->child->waitForStderr("sharing 'middle' with", 60s)) << p->child->err();
+  std::this_thread::sleep_for(3s);
+  // one leaves, then one dies, while the box moves
+  const nlohmann::json left = stop(s2);
+  std::this_thread::sleep_for(1s);
+  s1.child->signal(SIGKILL);
+  EXPECT_TRUE(s0.child->waitForStderr("(s1) timed out", 10s)) << s0.child->err();
+  std::this_thread::sleep_for(1500ms);  // s1's instance has faded out
+  net::FrontendClient client("127.0.0.1", s0.frontendPort, 5000ms);
+  client.hello("shared object test");
+  subscribe(client);
+  const pb::FrameUpdate last = newestUpdate(client);
+  const nlohmann::json summary = stop(s0);
+  const nlohmann::json& coupling = summary.at("peer").at("shared").at(0).at("coupling");
+  const nlohmann::json& leftCoupling = left.at("peer").at("shared").at(0).at("coupling");
+  const double limitN = DeviceLimits{}.maxForceN;
+  std::printf(
+      "[ figures  ] joins, a leave and a death: the coupling's force on the held instance stepped by at most "
+      "%.4f N a frame (%.4f N on the one that left); the device's limit is %.0f N\n",
+      coupling.at("largest_force_step_n").get<double>(),
+      leftCoupling.at("largest_force_step_n").get<double>(), limitN);
+  // a hundredth of the device's limit. The coupling pulls with about 4 N here, 0.6 mm
+  // apart: an instance that came in or went out at once would step by about half of that
+  EXPECT_LT(coupling.at("largest_force_step_n").get<double>(), 0.01 * limitN) << summary.dump();
+  EXPECT_LT(leftCoupling.at("largest_force_step_n").get<double>(), 0.01 * limitN) << left.dump();
+  EXPECT_GT(coupling.at("coupled_ticks").get<std::uint64_t>(), 100u);
+  EXPECT_EQ(coupling.at("divergent_ticks"), 0);
+  EXPECT_EQ(last.objects(kMiddle).sharer_peers_size(), 1);  // alone again
+}
+
+/// Whether every client's view of the middle box says it is divergent (`divergent`), or
+/// none does, within 10 s.
+bool allSeeDivergence(std::vector<std::unique_ptr<net::FrontendClient>>& clients, bool divergent) {
+  for (const auto giveUp = std::chrono::steady_clock::now() + 10s;
+       std::chrono::steady_clock::now() < giveUp;) {
+    bool all = true;
+    for (auto& c : clients) all = all && newestUpdate(*c).objects(kMiddle).divergent() == divergent;
+    if (all) return true;
+    std::this_thread::sleep_for(50ms);
+  }
+  return false;
+}
+
+TEST_F(SharedObjectCommand, AWallBetweenTwoInstancesIsFlaggedEverywhereAndNotPushedThroughThenCleared) {
+  Peer s0 = startPeer("s0", {"--share", "middle", "--name", "s0"});
+  ASSERT_NE(s0.udpPort, 0);
+  const std::string at = PeerPlacement::advertised(s0);
+  Peer s1 = startPeer("s1", {"--join", at, "--share", "middle", "--name", "s1"});
+  Peer watcher = startPeer("watcher", {"--join", at, "--name", "watcher"});
+  ASSERT_TRUE(s1.udpPort != 0 && watcher.udpPort != 0);
+  EXPECT_TRUE(s1.child->waitForStderr("sharing 'middle' with", 60s)) << s1.child->err();
+  auto clients = clientsOf({&s0, &s1, &watcher}, "shared object test");
+  grabMiddle(*clients[0]);
+  grabMiddle(*clients[1]);
+  std::this_thread::sleep_for(1s);
+  // s0's user lifts its box over the right one (x 15 to 35 mm, its top 23 mm over the
+  // plate) and puts it down beyond; s1's user holds its own where it was: the right box is
+  // a wall between the instances
+  const glm::dvec3 start(0.0), up(0.0, 0.0, 0.035), over(0.050, 0.0, 0.035), beyond(0.050, 0.0, 0.0);
+  std::atomic<bool> watching{true};
+  double s1FurthestX = 0.0;
+  std::thread watch([&] {
+    net::FrontendClient c("127.0.0.1", s1.frontendPort, 5000ms);
+    c.hello("wall watch");
+    subscribe(c);
+    while (watching.load()) {
+      s1FurthestX = std::max(s1FurthestX, middleOf(c).x);
+      std::this_thread::sleep_for(20ms);
+    }
+  });
+  slideHandle(*clients[0], "middle", start, up);
+  slideHandle(*clients[0], "middle", up, over);
+  slideHandle(*clients[0], "middle", over, beyond);
+  EXPECT_TRUE(allSeeDivergence(clients, true));
+  std::this_thread::sleep_for(1s);
+  watching = false;
+  watch.join();
+  // s1's box goes no further than the right box's face: 5 mm, less its force layer
+  EXPECT_LT(s1FurthestX, 0.005 + kTenthVoxelM);
+  EXPECT_GT(s1FurthestX, 0.001);  // pulled towards the other instance, against the wall
+  // s1's user brings its box over the wall too: they meet, and the flag clears everywhere
+  slideHandle(*clients[1], "middle", start, up);
+  slideHandle(*clients[1], "middle", up, over);
+  slideHandle(*clients[1], "middle", over, beyond);
+  EXPECT_TRUE(allSeeDivergence(clients, false));
+  const double apartM = apartFromFirst(clients, 2);
+  std::vector<nlohmann::json> summaries;
+  for (Peer* p : {&watcher, &s1, &s0}) summaries.push_back(stop(*p));
+  for (std::size_t i = 1; i < 3; ++i) {
+    const nlohmann::json& coupling = summaries[i].at("peer").at("shared").at(0).at("coupling");
+    EXPECT_GT(coupling.at("divergent_ticks").get<std::uint64_t>(), 0u) << summaries[i].dump();
+  }
+  std::printf(
+      "[ figures  ] a wall between two instances: the held-back one came %.3f mm towards it (its face 5 mm "
+      "away); apart %.3f mm once both were over it\n",
+      s1FurthestX * 1e3, apartM * 1e3);
 }
 
 }  // namespace
