@@ -228,6 +228,7 @@ std::unique_ptr<CommandTree> voxhapCommands() {
   addSimulateCommand(*tree);
   addBenchCommands(*tree);
   addDemoCommand(*tree);
+  addExtractCommand(*tree);
   addControllerCommand(*tree);
   addViewCommand(*tree);
   addPeerCommand(*tree);

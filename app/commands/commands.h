@@ -15,8 +15,10 @@ void addSimulateCommand(CommandTree& tree);
 void addVoxelizeCommand(CommandTree& tree);
 /// `voxhap bench NAME`: the paper's measurements (Table 1, …) as tables, JSON, CSV, SVG.
 void addBenchCommands(CommandTree& tree);
-/// `voxhap demo`: the main job on the built-in default scene.
+/// `voxhap demo`: the main job, a session of three peers on the built-in landing gear.
 void addDemoCommand(CommandTree& tree);
+/// `voxhap extract`: the main job for one user, offline.
+void addExtractCommand(CommandTree& tree);
 /// `voxhap controller`: the haptic controller serving front ends.
 void addControllerCommand(CommandTree& tree);
 /// `voxhap view`: the front end's window.

@@ -1,6 +1,7 @@
 #include "net/frontend/frontend_client.h"
 
 #include <array>
+#include <thread>
 
 #include <asio/connect.hpp>
 #include <asio/write.hpp>
@@ -157,6 +158,21 @@ bool FrontendClient::readMessage(Duration timeout) {
     decoder_.feed(std::string_view(buffer.data(), got));
   }
   return false;
+}
+
+std::optional<pb::FrameUpdate> FrontendClient::newestUpdate(Duration patience) {
+  std::optional<pb::FrameUpdate> last;
+  const auto giveUp = std::chrono::steady_clock::now() + patience;
+  for (bool first = true; !last && (first || std::chrono::steady_clock::now() < giveUp); first = false) {
+    if (!first) std::this_thread::sleep_for(Duration(20));
+    pb::ClientMessage ask;
+    ask.mutable_get_statistics();
+    if (!request(ask).has_statistics()) return std::nullopt;
+    while (const auto event = nextEvent(Duration(0))) {
+      if (event->has_frame_update()) last = event->frame_update();
+    }
+  }
+  return last;
 }
 
 }  // namespace voxhap::net

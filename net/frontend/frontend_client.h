@@ -54,6 +54,12 @@ public:
   /// Messages received meanwhile are kept.
   bool waitClosed(Duration timeout);
 
+  /// The newest frame update of a subscribed client by now: a request's reply comes after
+  /// every update sent before it, so the updates kept while waiting for it reach up to now
+  /// (reading until a quiet gap would return a backlog's first). Waits up to `patience`
+  /// for the first update after a subscription; none when it does not come.
+  std::optional<pb::FrameUpdate> newestUpdate(Duration patience = Duration(10000));
+
   bool isOpen() const { return open_; }
   /// Time-out of hello() and request().
   void setTimeout(Duration timeout) { timeout_ = timeout; }
