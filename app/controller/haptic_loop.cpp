@@ -13,8 +13,11 @@ namespace {
 FrameSnapshot initialSnapshot(const SimModel& model, const SimState& state) {
   FrameSnapshot s;
   s.objects.resize(model.objects.size());
-  for (std::size_t i = 0; i < s.objects.size(); ++i)
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
     s.objects[i].pose = s.objects[i].handle = objectPose(model, state, i);
+    s.objects[i].body = state.bodies[i];
+    s.objects[i].owner = state.owners[i];
+  }
   s.forceLayer = state.forceLayer;
   s.endedUs = monotonicTime().nowNs() / 1000;  // a peer's first heartbeat carries a real clock
   return s;

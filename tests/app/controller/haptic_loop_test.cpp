@@ -198,6 +198,55 @@ TEST_F(HapticLoopTest, InASessionItMovesWhatItOwnsFollowsWhatOthersOwnAndHoldsTh
   loop_->stop();  // before the device goes
 }
 
+TEST_F(HapticLoopTest, ASharedObjectIsIntegratedHereAndPulledTowardsAnotherSharersInstance) {
+  HapticLoopOptions options;
+  options.realtime = false;
+  options.localPeer = 7;
+  loop_ = std::make_unique<HapticLoop>(model_, makeSimState(model_), nullptr, options);
+  loop_->start();
+  const RigidBodyState placed = waitFor([](const FrameSnapshot& s) { return s.frame >= 10; }).objects[0].body;
+  // sharer 9 owns it (the lowest sharer); this peer shares it too, without the passivity
+  // controller (with it, the coupling gives out no energy that no port has put in)
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::SetOwner, 0, nullptr, 9, {}}));
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Share, 0, nullptr, 0, {}}));
+  // 9's instance 5 mm along y, streamed at 100 Hz from this thread (the comms thread's
+  // place) with its delay measured at once
+  RemoteUpdate delay;
+  delay.kind = RemoteUpdate::Kind::SharedDelay;
+  delay.peer = 9;
+  RemoteUpdate state;
+  state.kind = RemoteUpdate::Kind::SharedState;
+  state.peer = 9;
+  state.sample.body = placed;
+  state.sample.body.comWorld.y += 0.005;
+  FrameSnapshot pulled;
+  for (int i = 0; i < 300; ++i) {
+    const std::int64_t nowUs = monotonicTime().nowNs() / 1000;
+    state.sample.sentUs = state.arrivalUs = nowUs;
+    ASSERT_TRUE(loop_->postRemote(state));
+    ASSERT_TRUE(loop_->postRemote(delay));
+    std::this_thread::sleep_for(10ms);
+    pulled = loop_->latest();
+    if (pulled.objects[0].body.comWorld.y > placed.comWorld.y + 0.004) break;
+  }
+  const SharedSnapshot& coupling = pulled.objects[0].shared;
+  EXPECT_TRUE(coupling.shared);
+  EXPECT_EQ(coupling.counted, 1u);
+  EXPECT_GT(coupling.stiffnessShare, 0.0);
+  EXPECT_FALSE(coupling.divergent);
+  EXPECT_GT(pulled.objects[0].body.comWorld.y, placed.comWorld.y + 0.004);  // integrated here, pulled
+  EXPECT_EQ(pulled.objects[0].owner, 9u);
+  // 9 stops sharing: its instance fades out of the coupling within a second or so
+  RemoteUpdate left;
+  left.kind = RemoteUpdate::Kind::SharedLeft;
+  left.peer = 9;
+  ASSERT_TRUE(loop_->postRemote(left));
+  const FrameSnapshot alone =
+      waitFor([](const FrameSnapshot& s) { return s.objects[0].shared.counted == 0; });
+  EXPECT_EQ(alone.objects[0].shared.counted, 0u);
+  EXPECT_EQ(alone.objects[0].shared.forceWorld, glm::dvec3(0.0));
+}
+
 TEST_F(HapticLoopTest, StopRetiresTheDevicesStillHeldAndKeepsItsStatistics) {
   auto device = std::make_unique<ScriptedDevice>(pressingDevice(0.0, model_));
   ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, device.get(), 0, {}}));
