@@ -168,6 +168,13 @@ HudActions Hud::draw(const HudModel& model) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(object.name.c_str());
+        if (object.divergent) {
+          ImGui::SameLine();
+          ImGui::TextColored(kWarnColour, "shared by %zu, divergent", object.sharers);
+        } else if (object.sharers > 0) {
+          ImGui::SameLine();
+          ImGui::Text("shared by %zu", object.sharers);
+        }
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(object.heldBy.empty() ? kNone : object.heldBy.c_str());
         ImGui::TableNextColumn();

@@ -44,6 +44,10 @@ struct HudObject {
   double travelShare = 0.0;
   /// Clearance to the nearest surface, m; none when it is not measured (or in contact).
   std::optional<double> clearanceM;
+  /// The peers that share it (type-2), 0 when nobody does.
+  std::size_t sharers = 0;
+  /// Its sharers' instances are apart beyond the bound: what each peer shows may differ.
+  bool divergent = false;
 };
 
 /// A scene being loaded or voxelized.

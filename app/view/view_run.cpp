@@ -369,6 +369,8 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
           row.contacts = o.contacts();
           row.forceWorldN = {o.force_n().x(), o.force_n().y(), o.force_n().z()};
           row.travelShare = o.travel_share();
+          row.sharers = static_cast<std::size_t>(o.sharer_peers_size());
+          row.divergent = o.divergent();
         }
         if (static_cast<std::size_t>(k) < state.proximity.size() && state.proximity[k]) {
           const auto& d = state.proximity[k]->vertex_distance_m();

@@ -192,6 +192,24 @@ TEST_F(HudTest, DrawsInItsRegionAndLeavesTheFarCornerClear) {
   }
 }
 
+TEST_F(HudTest, ASharedObjectSaysSoAndItsDivergenceIsInTheWarningColour) {
+  // orange text (the warning colour, 1.0/0.6/0.2) is drawn anti-aliased: count the
+  // pixels that are clearly orange
+  const auto orange = [](const std::uint8_t* p) {
+    return p[0] > 200 && p[1] > 90 && p[1] < 170 && p[2] < 90;
+  };
+  HudModel model = sampleModel();
+  model.overruns = 0;  // the only other orange text
+  Hud hud(window_);
+  const int plain = settle(hud, model).count(hud.layout().window, orange);
+  model.objects[0].sharers = 2;
+  const int shared = settle(hud, model).count(hud.layout().window, orange);
+  model.objects[0].divergent = true;
+  const int divergent = settle(hud, model).count(hud.layout().window, orange);
+  EXPECT_EQ(shared, plain);
+  EXPECT_GT(divergent, plain + 20);
+}
+
 TEST_F(HudTest, LoadingBarFillGrowsWithTheFraction) {
   Hud hud(window_);
   const ImVec4 fill = ImGui::GetStyleColorVec4(ImGuiCol_PlotHistogram);
