@@ -68,10 +68,12 @@ bool everyPartReady(std::vector<std::unique_ptr<CrewPeer>>& peers, const std::ve
 CrewSessionResult runCrewSession(const CrewSessionOptions& options, Console& console,
                                  const std::function<void(double)>& progress) {
   if (options.users.empty()) throw Error("a session needs a user");
-  // the key every peer reads, in a folder of this run's own
+  // the key every peer reads, in a folder of this run's own that only this user can read
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("voxhap-session-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
+  std::filesystem::permissions(dir, std::filesystem::perms::owner_all,
+                               std::filesystem::perm_options::replace);
   struct RemoveDir {
     std::filesystem::path dir;
     ~RemoveDir() {

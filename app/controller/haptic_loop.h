@@ -161,7 +161,9 @@ private:
   class GrabbedDevice final : public HapticDevice {
   public:
     Pose handlePose(double) noexcept override { return device->handlePose(*clockS - startS); }
-    HandleVelocity handleVelocity(double) noexcept override { return device->handleVelocity(*clockS - startS); }
+    HandleVelocity handleVelocity(double) noexcept override {
+      return device->handleVelocity(*clockS - startS);
+    }
     void setFeedback(const CouplingWrench& feedbackWorld) noexcept override {
       device->setFeedback(feedbackWorld);
     }
