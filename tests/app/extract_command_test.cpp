@@ -1,7 +1,8 @@
-// `voxhap extract` (the demo's job for one user, offline), run as the real executable. The landing gear itself takes minutes to
-// generate and voxelize in a fresh cache, so the runs here pull the peg out of the
-// committed peg-in-hole scene through the same code (--scene, --move, --script); the
-// landing-gear figures are measured by hand and by `voxhap bench extraction`.
+// `voxhap extract` (the demo's job for one user, offline), run as the real executable.
+// The landing gear itself takes minutes to generate and voxelize in a fresh cache, so the
+// runs here pull the peg out of the committed peg-in-hole scene through the same code
+// (--scene, --move, --script); the landing-gear figures are measured by hand and by
+// `voxhap bench extraction`.
 
 #include <filesystem>
 #include <fstream>
