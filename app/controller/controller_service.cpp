@@ -520,9 +520,9 @@ void ControllerService::frameUpdate(pb::FrameUpdate& update) {
     out.set_contacts(o.contacts);
     out.set_travel_share(o.travelShare);
     out.set_owner_peer(o.owner);
-    if (o.shared.shared) {
-      out.set_divergent(o.shared.divergent);
-      out.set_shared_apart_m(o.shared.apartM);
+    if (o.shared) {
+      out.set_divergent(o.port.coupling.divergent);
+      out.set_shared_apart_m(o.port.coupling.apartM);
     }
   }
   if (peerHooks_ && peerHooks_->annotate) peerHooks_->annotate(update);

@@ -37,7 +37,7 @@ HapticLoop::HapticLoop(const SimModel& model, SimState initial, std::shared_ptr<
       handles_(model.objects.size()),
       gains_(model.objects.size()),
       jitter_(model.objects.size(), JitterBuffer(options.playoutDelayUs)),
-      shared_(model.objects.size(), 0),
+      sharing_(model.objects.size(), Sharing::No),
       ports_(model.objects.size()),
       external_(model.objects.size()),
       kinematic_(model.objects.size()),
@@ -110,13 +110,13 @@ void HapticLoop::apply(const LoopCommand& command) noexcept {
   }
   if (command.kind == LoopCommand::Kind::Share) {
     // from where the owner's stream has put it, at its velocity: no step
-    shared_[command.object] = command.value == 1 ? 2 : 1;
+    sharing_[command.object] = command.value == 1 ? Sharing::Passive : Sharing::Plain;
     return;
   }
   if (command.kind == LoopCommand::Kind::SetOwner) {
     state_.owners[command.object] = command.value;
     jitter_[command.object].clear();
-    if (shared_[command.object] != 0) return;  // its instance goes on here whoever owns it
+    if (sharing_[command.object] != Sharing::No) return;  // its instance goes on here whoever owns it
     // a part taken over starts at rest where it was shown, not with the remote velocity
     RigidBodyState& body = state_.bodies[command.object];
     body.linearVelocityWorld = body.angularVelocityWorld = glm::dvec3(0.0);
@@ -138,7 +138,7 @@ void HapticLoop::take(const RemoteUpdate& update) noexcept {
   switch (update.kind) {
     case RemoteUpdate::Kind::OwnerState:
       if (state_.owners[update.object] != update.peer || update.peer == options_.localPeer ||
-          shared_[update.object] != 0) {
+          sharing_[update.object] != Sharing::No) {
         return;  // a stream of an owner it no longer has, or of an instance it has its own of
       }
       jitter_[update.object].push(update.sample, update.arrivalUs);
@@ -160,7 +160,7 @@ void HapticLoop::moveRemoteObjects(std::int64_t endUs) noexcept {
   for (std::size_t i = 0; i < kinematic_.size(); ++i) {
     const PeerId owner = state_.owners[i];
     KinematicInput& k = kinematic_[i];
-    k.active = owner != options_.localPeer && shared_[i] == 0;
+    k.active = owner != options_.localPeer && sharing_[i] == Sharing::No;
     if (!k.active) continue;
     if (owner == kNoPeer || !jitter_[i].playOut(endUs, k.targetWorld)) {
       // nobody moves it, or its owner's stream has not begun: it stays where it is
@@ -172,11 +172,11 @@ void HapticLoop::moveRemoteObjects(std::int64_t endUs) noexcept {
 
 void HapticLoop::coupleSharedObjects(std::int64_t nowUs) noexcept {
   for (std::size_t i = 0; i < external_.size(); ++i) {
-    if (shared_[i] == 0) continue;
-    external_[i] =
-        ports_[i]
-            .step(nowUs, model_.objects[i].body, state_.bodies[i], gains_[i], shared_[i] == 2, model_.dtS)
-            .wrench;
+    if (sharing_[i] == Sharing::No) continue;
+    external_[i] = ports_[i]
+                       .step(nowUs, model_.objects[i].body, state_.bodies[i], gains_[i],
+                             sharing_[i] == Sharing::Passive, model_.dtS)
+                       .wrench;
   }
 }
 
@@ -196,20 +196,8 @@ void HapticLoop::publish(FrameStatus status, std::uint64_t frame) noexcept {
     o.forceWorld = f.contactForceWorld;
     o.contacts = f.contacts;
     o.travelShare = outputs_.coherence.travelScale;
-    SharedSnapshot& shared = o.shared;
-    shared.shared = shared_[i] != 0;
-    if (!shared.shared) continue;
-    const SharedObjectPort::Frame& p = ports_[i].last();
-    shared.counted = static_cast<std::uint32_t>(p.counted);
-    shared.apartM = p.coupling.apartM;
-    shared.apartRad = p.coupling.apartRad;
-    shared.divergent = p.coupling.divergent;
-    shared.stiffnessShare = p.coupling.stiffnessShare;
-    shared.forceWorld = p.wrench.forceWorld;
-    shared.inJ = p.inJ;
-    shared.observedJ = p.observedJ;
-    shared.dissipatedJ = p.dissipatedJ;
-    shared.largestForceStepN = p.largestForceStepN;
+    o.shared = sharing_[i] != Sharing::No;
+    if (o.shared) o.port = ports_[i].last();
   }
   s.forceLayer = state_.forceLayer;
   s.status = status;

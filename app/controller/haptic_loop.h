@@ -60,21 +60,6 @@ struct RemoteUpdate {
   double oneWayS = 0.0;
 };
 
-/// A shared object's coupling on this peer (type-2), in a snapshot.
-struct SharedSnapshot {
-  bool shared = false;        ///< this peer integrates its own instance
-  std::uint32_t counted = 0;  ///< other instances with a weight above zero
-  double apartM = 0.0;        ///< from the others' weighted average
-  double apartRad = 0.0;
-  bool divergent = false;
-  double stiffnessShare = 0.0;     ///< of the handle's stiffness (Σw²/Σw)
-  glm::dvec3 forceWorld{0.0};      ///< the coupling's on the instance, after passivity, N
-  double inJ = 0.0;                ///< energy in at the port so far
-  double observedJ = 0.0;          ///< the passivity observer
-  double dissipatedJ = 0.0;        ///< by the passivity controller so far
-  double largestForceStepN = 0.0;  ///< of the coupling's force from one frame to the next so far, N
-};
-
 /// One moving object in a snapshot.
 struct ObjectSnapshot {
   Pose pose;            ///< local → world
@@ -84,8 +69,9 @@ struct ObjectSnapshot {
   bool held = false;
   glm::dvec3 forceWorld{0.0};  ///< contact force, N
   std::uint32_t contacts = 0;
-  double travelShare = 1.0;  ///< MaxTravel over its upper bound
-  SharedSnapshot shared;
+  double travelShare = 1.0;      ///< MaxTravel over its upper bound
+  bool shared = false;           ///< this peer integrates its own instance of it (type-2)
+  SharedObjectPort::Frame port;  ///< its coupling to the other instances, when shared
 };
 
 /// What the haptic thread publishes after each frame.
@@ -121,6 +107,9 @@ struct HapticLoopOptions {
 
 class HapticLoop {
 public:
+  /// How an object is shared here (type-2).
+  enum class Sharing : std::uint8_t { No, Plain, Passive };
+
   /// A snapshot's period and compute summaries are brought up to date every so many frames.
   static constexpr std::uint64_t kSummaryFrames = 100;
 
@@ -194,7 +183,7 @@ private:
   std::vector<HandleInput> handles_;
   std::vector<CouplingGains> gains_;     ///< per object, its coupling's (the model's until set)
   std::vector<JitterBuffer> jitter_;     ///< per object, its remote owner's stream
-  std::vector<std::uint8_t> shared_;     ///< per object: 0 not shared here, 1 shared, 2 with passivity
+  std::vector<Sharing> sharing_;         ///< per object
   std::vector<SharedObjectPort> ports_;  ///< per object, its coupling when shared here
   std::vector<ExternalWrench> external_;
   std::vector<KinematicInput> kinematic_;

@@ -81,8 +81,8 @@ net::LocalFrame PeerLink::localFrame() {
   for (const ObjectSnapshot& o : s.objects) {
     frame.bodies.push_back(o.body);
     frame.held.push_back(o.held);
-    frame.sharedInJ.push_back(o.shared.inJ);
-    frame.divergent.push_back(o.shared.divergent);
+    frame.sharedInJ.push_back(o.port.inJ);
+    frame.divergent.push_back(o.port.coupling.divergent);
   }
   return frame;
 }
@@ -152,14 +152,14 @@ void PeerLink::tickShared(const FrameSnapshot& s) {
       now.insert(peer);  // again next tick
   }
   sharers_ = std::move(now);
-  const SharedSnapshot& o = s.objects[object].shared;
+  const SharedObjectPort::Frame& o = s.objects[object].port;
   ++shared_.ticks;
   if (o.counted > 0) {
     ++shared_.coupledTicks;
-    shared_.sumApartM += o.apartM;
-    shared_.maxApartM = std::max(shared_.maxApartM, o.apartM);
-    shared_.maxStiffnessShare = std::max(shared_.maxStiffnessShare, o.stiffnessShare);
-    if (o.divergent) ++shared_.divergentTicks;
+    shared_.sumApartM += o.coupling.apartM;
+    shared_.maxApartM = std::max(shared_.maxApartM, o.coupling.apartM);
+    shared_.maxStiffnessShare = std::max(shared_.maxStiffnessShare, o.coupling.stiffnessShare);
+    if (o.coupling.divergent) ++shared_.divergentTicks;
   }
   shared_.minObservedJ = std::min(shared_.minObservedJ, o.observedJ);
   shared_.inJ = o.inJ;

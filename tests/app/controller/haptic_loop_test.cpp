@@ -229,11 +229,11 @@ TEST_F(HapticLoopTest, ASharedObjectIsIntegratedHereAndPulledTowardsAnotherShare
     pulled = loop_->latest();
     if (pulled.objects[0].body.comWorld.y > placed.comWorld.y + 0.004) break;
   }
-  const SharedSnapshot& coupling = pulled.objects[0].shared;
-  EXPECT_TRUE(coupling.shared);
-  EXPECT_EQ(coupling.counted, 1u);
-  EXPECT_GT(coupling.stiffnessShare, 0.0);
-  EXPECT_FALSE(coupling.divergent);
+  const SharedObjectPort::Frame& port = pulled.objects[0].port;
+  EXPECT_TRUE(pulled.objects[0].shared);
+  EXPECT_EQ(port.counted, 1u);
+  EXPECT_GT(port.coupling.stiffnessShare, 0.0);
+  EXPECT_FALSE(port.coupling.divergent);
   EXPECT_GT(pulled.objects[0].body.comWorld.y, placed.comWorld.y + 0.004);  // integrated here, pulled
   EXPECT_EQ(pulled.objects[0].owner, 9u);
   // 9 stops sharing: its instance fades out of the coupling within a second or so
@@ -241,10 +241,9 @@ TEST_F(HapticLoopTest, ASharedObjectIsIntegratedHereAndPulledTowardsAnotherShare
   left.kind = RemoteUpdate::Kind::SharedLeft;
   left.peer = 9;
   ASSERT_TRUE(loop_->postRemote(left));
-  const FrameSnapshot alone =
-      waitFor([](const FrameSnapshot& s) { return s.objects[0].shared.counted == 0; });
-  EXPECT_EQ(alone.objects[0].shared.counted, 0u);
-  EXPECT_EQ(alone.objects[0].shared.forceWorld, glm::dvec3(0.0));
+  const FrameSnapshot alone = waitFor([](const FrameSnapshot& s) { return s.objects[0].port.counted == 0; });
+  EXPECT_EQ(alone.objects[0].port.counted, 0u);
+  EXPECT_EQ(alone.objects[0].port.wrench.forceWorld, glm::dvec3(0.0));
 }
 
 TEST_F(HapticLoopTest, StopRetiresTheDevicesStillHeldAndKeepsItsStatistics) {
