@@ -7,14 +7,13 @@
 #include <sstream>
 #include <thread>
 
-#include <asio/io_context.hpp>
-#include <asio/ip/udp.hpp>
 #include <unistd.h>
 
 #include "app/controller/inprocess_controller.h"
 #include "haptics/core/error.h"
 #include "net/frontend/frontend_client.h"
 #include "net/frontend/pose_proto.h"
+#include "net/peer/free_udp_port.h"
 #include "net/peer/session_key.h"
 
 namespace voxhap::cli {
@@ -22,14 +21,6 @@ namespace {
 
 namespace pb = net::pb;
 using Clock = std::chrono::steady_clock;
-
-/// A free UDP port on loopback, for the first peer (bound and let go: the others need it
-/// before they start).
-std::uint16_t freeUdpPort() {
-  asio::io_context io;
-  asio::ip::udp::socket socket(io, asio::ip::udp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
-  return socket.local_endpoint().port();
-}
 
 /// One user's peer: its controller, its diagnostics and the front end that watches it.
 struct CrewPeer {
@@ -84,7 +75,7 @@ CrewSessionResult runCrewSession(const CrewSessionOptions& options, Console& con
   const std::filesystem::path keyFile = dir / "session.key";
   std::ofstream(keyFile) << net::SessionKey::generate().toHex() << "\n";
 
-  const std::uint16_t firstPort = freeUdpPort();
+  const std::uint16_t firstPort = net::freeLoopbackUdpPort();
   std::vector<std::unique_ptr<CrewPeer>> peers;
   for (std::size_t k = 0; k < options.users.size(); ++k) {
     const CrewUser& user = options.users[k];

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -56,7 +57,8 @@ struct PeerFigures {
 
 /// The deepest exact overlap of a pair of moving parts, over every peer's samples.
 struct PairFigures {
-  std::string a, b;
+  std::size_t a = 0, b = 0;  ///< the parts, as the session's objects
+  std::unique_ptr<ExactPenetration> exact;
   double deepestM = 0.0;
   std::size_t peer = 0;
   double atS = 0.0;
@@ -112,20 +114,18 @@ int runDemo(const DemoArgs& args, const CommandContext& c) {
   }
   const double probeSpacingM = options.model.staticVoxelSizeM / kProbesPerVoxel;
   std::vector<PairFigures> pairs;
-  std::vector<std::unique_ptr<ExactPenetration>> exact;
   for (std::size_t a = 0; a < bodies.size(); ++a) {
-    for (std::size_t b = a + 1; b < bodies.size(); ++b) {
-      pairs.push_back({r.objects[a], r.objects[b]});
-      exact.push_back(std::make_unique<ExactPenetration>(bodies[a], bodies[b], probeSpacingM));
-    }
+    for (std::size_t b = a + 1; b < bodies.size(); ++b)
+      pairs.push_back({a, b, std::make_unique<ExactPenetration>(bodies[a], bodies[b], probeSpacingM)});
   }
   for (std::size_t n = 0; n < r.samples.size(); n += 2) {
     const CrewSample& s = r.samples[n];
-    for (std::size_t p = 0, a = 0; a < bodies.size(); ++a) {
-      for (std::size_t b = a + 1; b < bodies.size(); ++b, ++p) {
-        const PenetrationSample m = exact[p]->measure(s.poses[a], s.poses[b], false);
-        if (m.depthM > pairs[p].deepestM) pairs[p] = {pairs[p].a, pairs[p].b, m.depthM, s.peer, s.playedS};
-      }
+    for (PairFigures& p : pairs) {
+      const PenetrationSample m = p.exact->measure(s.poses[p.a], s.poses[p.b], false);
+      if (m.depthM <= p.deepestM) continue;
+      p.deepestM = m.depthM;
+      p.peer = s.peer;
+      p.atS = s.playedS;
     }
   }
 
@@ -148,8 +148,8 @@ int runDemo(const DemoArgs& args, const CommandContext& c) {
     j["peers"] = list;
     nlohmann::ordered_json overlaps = nlohmann::ordered_json::array();
     for (const PairFigures& p : pairs) {
-      overlaps.push_back({{"a", p.a},
-                          {"b", p.b},
+      overlaps.push_back({{"a", r.objects[p.a]},
+                          {"b", r.objects[p.b]},
                           {"deepest_m", p.deepestM},
                           {"on_peer_of", p.deepestM > 0.0 ? nlohmann::ordered_json(peers[p.peer].user)
                                                           : nlohmann::ordered_json()},
@@ -187,7 +187,8 @@ int runDemo(const DemoArgs& args, const CommandContext& c) {
           << fixed(p.finalActuatorOffM * 1e3, 1) << " mm from the path's end\n";
   }
   for (const PairFigures& p : pairs) {
-    c.out << "exact overlap    " << p.a << " and " << p.b << ": " << fixed(p.deepestM * 1e3, 3) << " mm";
+    c.out << "exact overlap    " << r.objects[p.a] << " and " << r.objects[p.b] << ": "
+          << fixed(p.deepestM * 1e3, 3) << " mm";
     if (p.deepestM > 0.0) c.out << " (on " << peers[p.peer].user << "'s peer, " << fixed(p.atS, 2) << " s)";
     c.out << "\n";
   }

@@ -7,11 +7,10 @@
 #include <fstream>
 #include <thread>
 
-#include <asio/io_context.hpp>
-#include <asio/ip/udp.hpp>
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "net/peer/free_udp_port.h"
 #include "support/gltf_fixtures.h"
 
 namespace voxhap::test {
@@ -80,7 +79,7 @@ nlohmann::json PeerProcessTest::stop(Peer& p) {
 
 std::vector<std::string> PeerPlacement::place(const std::string& name, std::vector<std::string> args) {
   if (path_.delay.empty()) return args;
-  const std::uint16_t port = freeUdpPort();
+  const std::uint16_t port = net::freeLoopbackUdpPort();
   const std::string jitter =
       path_.jitter.empty() ? std::to_string(std::stod(path_.delay) / 10.0) : path_.jitter;
   relays_.push_back(std::make_unique<ChildProcess>(
@@ -99,12 +98,6 @@ std::vector<std::string> PeerPlacement::place(const std::string& name, std::vect
 
 std::string PeerPlacement::advertised(const PeerProcessTest::Peer& p) {
   return "127.0.0.1:" + std::to_string(p.advertisedPort);
-}
-
-std::uint16_t freeUdpPort() {
-  asio::io_context io;
-  asio::ip::udp::socket socket(io, asio::ip::udp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
-  return socket.local_endpoint().port();
 }
 
 glm::dvec3 positionOf(const pb::ObjectState& o) {

@@ -75,10 +75,6 @@ private:
   std::vector<std::unique_ptr<ChildProcess>> relays_;
 };
 
-/// A free UDP port on loopback (bound and let go: a peer behind a relay needs its port
-/// before it starts, for the relay's target).
-std::uint16_t freeUdpPort();
-
 glm::dvec3 positionOf(const net::pb::ObjectState& o);
 
 /// Subscribes `client` (hello done) to frame updates at 50 Hz.
