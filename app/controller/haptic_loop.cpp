@@ -125,8 +125,7 @@ void HapticLoop::apply(const LoopCommand& command) noexcept {
   retire(command.object);
   if (command.kind == LoopCommand::Kind::Grab && command.device != nullptr) {
     grabbed_[command.object].device = command.device;
-    grabbed_[command.object].clockS = &frameEndS_;
-    grabbed_[command.object].startS = frameEndS_;
+    grabbed_[command.object].startS = state_.timeS;
     command.device->grabbed(objectPose(model_, state_, command.object));
     devices_[command.object] = &grabbed_[command.object];
   }
@@ -226,7 +225,6 @@ void HapticLoop::run() noexcept {
       ++resyncs_;
       skippedPeriods_ += tick.skippedPeriods;
     }
-    frameEndS_ = 1e-9 * static_cast<double>(tick.beganNs + options_.periodNs);
     while (commands_.tryPop(command)) apply(command);
     RemoteUpdate update;
     while (remote_.tryPop(update)) take(update);

@@ -143,22 +143,16 @@ public:
   const PeriodStats& computeStats() const noexcept { return compute_; }
 
 private:
-  /// A held device with its time counted from the grab on the loop's clock, not in
-  /// simulated time: a hand (or the script that stands in for one) goes on moving while a
-  /// stall skips frames, and users at several peers move together however each peer's
-  /// frames fall.
+  /// A held device with its time counted from the grab.
   class GrabbedDevice final : public HapticDevice {
   public:
-    Pose handlePose(double) noexcept override { return device->handlePose(*clockS - startS); }
-    HandleVelocity handleVelocity(double) noexcept override {
-      return device->handleVelocity(*clockS - startS);
-    }
+    Pose handlePose(double tS) noexcept override { return device->handlePose(tS - startS); }
+    HandleVelocity handleVelocity(double tS) noexcept override { return device->handleVelocity(tS - startS); }
     void setFeedback(const CouplingWrench& feedbackWorld) noexcept override {
       device->setFeedback(feedbackWorld);
     }
     const DeviceLimits& limits() const noexcept override { return device->limits(); }
     HapticDevice* device = nullptr;
-    const double* clockS = nullptr;  ///< the end of the frame being stepped, the loop's clock
     double startS = 0.0;
   };
 
@@ -177,7 +171,6 @@ private:
   SimState state_;
   SimWorkspace workspace_;
   FrameOutputs outputs_;
-  double frameEndS_ = 0.0;  ///< the frame being stepped ends then, s on the loop's clock
   std::vector<GrabbedDevice> grabbed_;
   std::vector<HapticDevice*> devices_;  ///< &grabbed_[i] while held, else nullptr
   std::vector<HandleInput> handles_;
