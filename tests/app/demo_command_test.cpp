@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
+#include "support/exclusive_section.h"
 #include "support/sanitizers.h"
 
 namespace voxhap::test {
@@ -29,6 +30,7 @@ TEST_F(DemoCommand, HelpSaysWhoDoesWhatAndWhatTheSummaryMeasures) {
 
 TEST_F(DemoCommand, ThreePeersPlayTheSessionAndReportItWithoutOverlap) {
   if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
+  const ExclusiveSection alone(kLandingGearSessionLock);
   const CliRun r = voxhap({"demo", "--no-realtime", "--json"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);

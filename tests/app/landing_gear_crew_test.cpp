@@ -27,6 +27,7 @@
 #include "net/frontend/pose_proto.h"
 #include "support/child_process.h"
 #include "support/cli_runner.h"
+#include "support/exclusive_section.h"
 #include "support/newest_update.h"
 #include "support/sanitizers.h"
 
@@ -91,6 +92,7 @@ struct Sample {
 
 TEST_F(LandingGearCrew, ThreeUsersPullTheActuatorOutAndPressBothSparesIntoItWithoutOverlap) {
   if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
+  const ExclusiveSection alone(kLandingGearSessionLock);
   std::ofstream(dir_ / "session.key") << std::string(64, 'c') << "\n";
   std::array<CrewPeer, 3> peers;
   peers[0] = start(0, 0);  // generates and voxelizes the scene; the others find it cached
