@@ -9,9 +9,30 @@
 #include "haptics/dynamics/pose.h"
 
 namespace voxhap {
+namespace {
+
+/// `state` carried `aheadS` forward along its velocities.
+RigidBodyState predicted(const RigidBodyState& state, double aheadS) noexcept {
+  RigidBodyState out = state;
+  out.comWorld += state.linearVelocityWorld * aheadS;
+  out.orientation =
+      glm::normalize(quatFromRotationVector(state.angularVelocityWorld * aheadS) * state.orientation);
+  return out;
+}
+
+}  // namespace
+
 double delayWeight(double delayS) noexcept {
   if (std::isnan(delayS)) return 0.0;
   return std::clamp(1.0 - delayS / kSharedCouplingFadeDelayS, 0.0, 1.0);
+}
+
+double ageWeight(double ageS, double omegaRadS) noexcept {
+  if (std::isnan(ageS) || std::isnan(omegaRadS)) return 0.0;
+  const double omegaAge = omegaRadS * ageS;
+  if (omegaAge <= kSharedCouplingOmegaAge) return 1.0;
+  const double allowed = kSharedCouplingOmegaAge / omegaAge;
+  return allowed * allowed;
 }
 
 SharedCoupling sharedCouplingWrench(const CouplingGains& stiffest, const RigidBodyModel& model,
@@ -22,17 +43,19 @@ SharedCoupling sharedCouplingWrench(const CouplingGains& stiffest, const RigidBo
   double squareSum = 0.0;
   glm::dvec3 com{0.0}, linear{0.0}, angular{0.0};
   glm::dquat orientation(0.0, 0.0, 0.0, 0.0);
-  for (const RemoteInstance& r : remotes) {
-    const double w = delayWeight(r.delayS);
-    if (w == 0.0 || !isFiniteWithUnitOrientation(r.state)) continue;
+  const double omegaRadS = std::sqrt(stiffest.linearStiffnessNPerM / model.massKg);
+  for (const RemoteInstance& remote : remotes) {
+    const double w = delayWeight(remote.delayS) * ageWeight(remote.ageS, omegaRadS);
+    if (w == 0.0 || !isFiniteWithUnitOrientation(remote.state)) continue;
+    const RigidBodyState r = predicted(remote.state, std::max(remote.ageS, 0.0));
     weightSum += w;
     squareSum += w * w;
-    com += w * r.state.comWorld;
-    linear += w * r.state.linearVelocityWorld;
-    angular += w * r.state.angularVelocityWorld;
+    com += w * r.comWorld;
+    linear += w * r.linearVelocityWorld;
+    angular += w * r.angularVelocityWorld;
     // q and −q are one orientation: take the one on the local instance's side
-    const double side = glm::dot(r.state.orientation, local.orientation) < 0.0 ? -w : w;
-    orientation = orientation + side * r.state.orientation;
+    const double side = glm::dot(r.orientation, local.orientation) < 0.0 ? -w : w;
+    orientation = orientation + side * r.orientation;
   }
   const double orientationLength = glm::length(orientation);
   if (weightSum == 0.0 || !(orientationLength > 0.0)) return out;  // (opposite turns cancel)

@@ -21,11 +21,21 @@
 /// ζ = 1) the two together have twice its a and c, a + 2c = 2.125 < 4, stable at 1 kHz
 /// however the target moves (the remote instances, 100 Hz or more, are played out at 1 kHz
 /// by the jitter buffer). The loop through the network is another matter. Two instances
-/// of mass m, each pulled towards the other's state τ old: their difference r obeys
-/// m·r'' = −(k + b·d/dt)(r(t) + r(t − τ)), and to first order in τ that is stable while
-/// m > b·τ and 2b > k·τ, i.e. (ζ = 1) ω_n·τ < 0.5. The handle's ω_n = 250 rad/s allows
-/// 2 ms; at 100 ms it is 5 rad/s. The stiffness that τ allows falls as 1/τ², so the
-/// paper's linear fade weakens the loop but does not make it stable by itself.
+/// of mass m, each pulled towards the other's state a old: their difference r obeys
+/// m·r'' = −(k + b·d/dt)(r(t) + r(t − a)), and to first order in a that is stable while
+/// m > b·a and 2b > k·a, i.e. (ζ = 1) ω_n·a < 0.5. The age a of a remote state is its
+/// stream's one-way delay and the jitter buffer's play-out delay (30 ms), so even on
+/// loopback the handle's ω_n = 250 rad/s is 15 times too stiff. Each instance therefore
+/// counts with a second weight, its age's: w_a = min(1, (0.25 / (ω₀·a))²), ω₀ = √(k₀/m),
+/// so that its spring has ω_n·a ≤ 0.25, half the bound (as the handle keeps half its own).
+/// The stiffness that a allows falls as 1/a², faster than the paper's linear fade, which
+/// stays for a stream that stops.
+///
+/// Prediction: a remote state is carried forward by its age along its own velocities, so
+/// that instances moving together pull on each other not at all. Without it each is pulled
+/// back by k·v·a: at the handle's stiffness, 0.1 m/s behind an instance 30 ms old held the
+/// landing gear's actuator in its jaws against its users' 100 N (`voxhap demo`, whose
+/// passivity controllers dissipated 1.5 kJ in 30 s).
 ///
 /// Divergence (paper §6.1: something, a thin wall, trapped between the instances): the
 /// local instance is divergent when it is further than a bound from the remote instances'
@@ -51,10 +61,18 @@ inline constexpr double kSharedCouplingFadeDelayS = 1.0;
 struct RemoteInstance {
   RigidBodyState state;  ///< played out to this frame (jitter buffer)
   double delayS = 0.0;   ///< its stream's one-way delay, or its newest state's age if larger, s
+  double ageS = 0.0;     ///< how old `state` is: its stream's one-way delay and the play-out delay, s
 };
+
+/// ω_n·a of the stiffest spring to an instance of age a (see the file comment).
+inline constexpr double kSharedCouplingOmegaAge = 0.25;
 
 /// w = max(0, 1 − τ/kSharedCouplingFadeDelayS); 1 for a negative delay, 0 for a NaN.
 double delayWeight(double delayS) noexcept;
+
+/// w_a = min(1, (kSharedCouplingOmegaAge / (ω₀·a))²) for a state `ageS` old, with ω₀ the
+/// stiffest coupling's natural frequency (rad/s); 1 for an age of 0 or less, 0 for a NaN.
+double ageWeight(double ageS, double omegaRadS) noexcept;
 
 /// How far the local instance may be from the remote instances' average before it is
 /// divergent (see the file comment).

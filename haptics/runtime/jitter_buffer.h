@@ -52,6 +52,8 @@ public:
   void clear() noexcept { count_ = 0; }
 
   std::size_t size() const noexcept { return count_; }
+  /// How far behind its least delayed arrival a sample is played, s.
+  double playoutDelayS() const noexcept { return 1e-6 * static_cast<double>(delayUs_); }
   /// Local time minus the owner's clock of the least delayed sample held, µs.
   std::int64_t offsetUs() const noexcept { return offsetUs_; }
 

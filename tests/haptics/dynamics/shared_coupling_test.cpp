@@ -39,6 +39,43 @@ TEST(SharedCoupling, TheWeightFallsLinearlyToZeroAtOneSecond) {
   EXPECT_EQ(delayWeight(std::numeric_limits<double>::quiet_NaN()), 0.0);
 }
 
+TEST(SharedCoupling, AnInstancesAgeAllowsAStiffnessWhoseNaturalFrequencyTimesItIsAQuarter) {
+  const double omegaRadS = 250.0;
+  EXPECT_EQ(ageWeight(0.0, omegaRadS), 1.0);
+  EXPECT_EQ(ageWeight(0.001, omegaRadS), 1.0);  // ω·a = 0.25
+  EXPECT_DOUBLE_EQ(ageWeight(0.002, omegaRadS), 0.25);
+  EXPECT_DOUBLE_EQ(ageWeight(0.030, omegaRadS), 1.0 / 900.0);
+  EXPECT_EQ(ageWeight(std::numeric_limits<double>::quiet_NaN(), omegaRadS), 0.0);
+  // the spring that weight leaves has ω_n·a = 0.25
+  const RigidBodyModel model = offsetBoxModel(2.0);
+  const CouplingGains gains = defaultCouplingGains(model, kDtS);
+  const double ageS = 0.030;
+  const std::vector<RemoteInstance> remotes = {{instance(model, glm::dvec3(0.003, 0.0, 0.0)), 0.0, ageS}};
+  const SharedCoupling c = sharedCouplingWrench(gains, model, instance(model), remotes);
+  const double stiffnessNPerM = c.onLocal.forceWorld.x / 0.003;
+  EXPECT_NEAR(std::sqrt(stiffnessNPerM / model.massKg) * ageS, kSharedCouplingOmegaAge, 1e-9);
+}
+
+TEST(SharedCoupling, InstancesMovingTogetherDoNotPullOnEachOtherHoweverOldTheRemoteStateIs) {
+  // the remote state, 30 ms old, is where the local instance was then: carried forward by
+  // its age along its velocities, it is where the local one is now
+  const RigidBodyModel model = offsetBoxModel(2.0);
+  const CouplingGains gains = defaultCouplingGains(model, kDtS);
+  const double ageS = 0.030;
+  RigidBodyState local = instance(model);
+  local.linearVelocityWorld = glm::dvec3(0.1, -0.05, 0.02);
+  local.angularVelocityWorld = glm::dvec3(0.0, 0.0, 0.3);
+  RigidBodyState then = local;
+  then.comWorld -= local.linearVelocityWorld * ageS;
+  then.orientation = quatFromRotationVector(-local.angularVelocityWorld * ageS) * local.orientation;
+  const std::vector<RemoteInstance> remotes = {{then, 0.0, ageS}};
+  const SharedCoupling c = sharedCouplingWrench(gains, model, local, remotes);
+  EXPECT_GT(c.stiffnessShare, 0.0);
+  EXPECT_LT(c.apartM, 1e-12);
+  EXPECT_LT(glm::length(c.onLocal.forceWorld), 1e-9);
+  EXPECT_LT(glm::length(c.onLocal.torqueWorld), 1e-9);
+}
+
 TEST(SharedCoupling, ARemoteInstanceAwayPullsWithTheFullStiffnessAtNoDelay) {
   const RigidBodyModel model = offsetBoxModel(2.0);
   const CouplingGains gains = defaultCouplingGains(model, kDtS);
