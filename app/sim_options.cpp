@@ -24,7 +24,8 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
         break;
       case SimOption::PointOffset:
         addLengthOption(command, "--point-offset", o.pointOffsetM,
-                        "move every point along its normal, negative inward (e.g. -0.175mm)",
+                        "move every point along its normal, negative inward (e.g. -0.175mm); "
+                        "overrides the scene's point_offset of each object",
                         LengthSign::Any);
         break;
       case SimOption::PointLayer:

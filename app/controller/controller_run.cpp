@@ -58,7 +58,7 @@ void printSummary(std::ostream& out, const char* label, const PeriodSummary& s) 
       << us(s.maxNs) << " µs; " << s.overruns << " over " << (label[0] == 'p' ? "1.5 ms" : "1 ms") << "\n";
 }
 
-/// What peers compare at join: every object's name, role and meshes, and the moving names.
+/// What peers compare at join: every object's name, settings and meshes, and the moving names.
 Digest128 sceneHash(const Scene& scene, const std::vector<std::string>& moving) {
   ContentHash hash;
   const auto addText = [&hash](const std::string& text) {
@@ -68,6 +68,8 @@ Digest128 sceneHash(const Scene& scene, const std::vector<std::string>& moving) 
   for (const SceneObject& object : scene.objects) {
     addText(object.name);
     hash.add(static_cast<std::uint32_t>(object.settings.role));
+    hash.addDouble(object.settings.densityKgPerM3.value_or(0.0));  // 0: the engine's default
+    hash.addDouble(object.settings.pointOffsetM.value_or(0.0));
     hash.add(static_cast<std::uint64_t>(object.parts.size()));
     for (const Part& part : object.parts) {
       hash.addArray(std::span<const glm::vec3>(part.mesh.positionsWorld));
@@ -98,8 +100,9 @@ std::unique_ptr<controller::ControllerSession> loadSession(const net::pb::LoadSc
   session->sceneHash = sceneHash(scene, moving);
   session->voxelSizeM = model.staticVoxelSizeM;
   session->pointSpacingM = model.pointSpacingM;
-  session->pointOffsetM = model.pointDisplacementM;
-  for (const SceneObject* o : selectObjects(scene, moving).rest) session->staticObjects.push_back(o->name);
+  const ObjectSelection selection = selectObjects(scene, moving);
+  session->pointOffsetM = pointDisplacementOf(*selection.picked.front(), model);
+  for (const SceneObject* o : selection.rest) session->staticObjects.push_back(o->name);
   // the voxels take most of the load; the moving objects' own surface voxmaps the rest
   const ProgressFn voxels = [&progress](double f) {
     if (progress) progress(0.9 * f);

@@ -57,7 +57,7 @@ struct ControllerSession {
   std::vector<std::string> staticObjects;  ///< names of the static parts
   double voxelSizeM = 0.0;                 ///< of the static scene, as built
   double pointSpacingM = 0.0;              ///< of the moving objects, as built
-  double pointOffsetM = 0.0;               ///< of the moving objects' points, as built
+  double pointOffsetM = 0.0;               ///< of the first moving object's points, as built
   std::unique_ptr<BuiltScene> built;       ///< the model the loop reads (a stable address)
   std::unique_ptr<HapticLoop> loop;        ///< started by the ControllerService
   std::unique_ptr<SessionProximity> proximity;

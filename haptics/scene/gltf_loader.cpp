@@ -30,6 +30,8 @@ std::string quoted(const std::string& name) {
 // the end of the stack; real glTF files stay within a few dozen levels.
 constexpr std::size_t kMaxJsonDepth = 256;
 constexpr std::size_t kMaxNodeDepth = 256;
+/// Largest point offset either way, m (as a controller takes from a client).
+constexpr double kMaxPointOffsetM = 1.0;
 
 /// Deepest nesting of JSON arrays and objects in `text`, not counting brackets in strings.
 std::size_t jsonNestingDepth(const unsigned char* text, std::size_t size) {
@@ -237,6 +239,12 @@ std::optional<NodeSettings> readNodeSettings(const tinygltf::Node& node, const s
         throw Error(fieldWhere + " must be a positive number (kg/m³)");
       }
       result.settings.densityKgPerM3 = density;
+    } else if (key == "point_offset") {
+      const double offsetM = field.IsNumber() ? field.GetNumberAsDouble() : std::nan("");
+      if (!(std::abs(offsetM) <= kMaxPointOffsetM)) {
+        throw Error(fieldWhere + " must be a length of at most 1 m either way (metres)");
+      }
+      result.settings.pointOffsetM = offsetM;
     } else {
       warnings.push_back(fieldWhere + " is not a Voxhap setting; ignored");
     }

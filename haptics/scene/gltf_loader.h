@@ -5,16 +5,19 @@
 /// logical objects by the nearest node, the mesh node itself or an ancestor, whose
 /// `extras` carry Voxhap settings:
 ///
-///     "extras": {"voxhap": {"role": "dynamic", "object": "actuator", "density": 7800}}
+///     "extras": {"voxhap": {"role": "dynamic", "object": "actuator", "density": 7800,
+///                           "point_offset": -0.0005}}
 ///
 /// `role` is "static" (default) or "dynamic"; `object` names the logical object
 /// (nodes naming the same object merge into it; default: that node's name);
-/// `density` is in kg/m³. A mesh node with no such node above it is a static object
-/// of its own. A node with no mesh and no such settings, on it or above it, that holds
-/// parts is a `SceneGroup` (a CAD sub-assembly): its name may be moved as one object
-/// (object_selection.h). Objects, then groups, that share a name are numbered " (2)", " (3)",
-/// … with a warning. Bad files throw `voxhap::Error` with one line that names the file and
-/// the node, mesh, accessor or field; nothing the loader skips goes unreported.
+/// `density` is in kg/m³; `point_offset` moves the object's points along their
+/// normals, in metres, negative inward (ObjectSettings::pointOffsetM). A mesh node with
+/// no such node above it is a static object of its own. A node with no mesh and no such
+/// settings, on it or above it, that holds parts is a `SceneGroup` (a CAD sub-assembly):
+/// its name may be moved as one object (object_selection.h). Objects, then groups, that
+/// share a name are numbered " (2)", " (3)", … with a warning. Bad files throw
+/// `voxhap::Error` with one line that names the file and the node, mesh, accessor or
+/// field; nothing the loader skips goes unreported.
 
 #include <cstdint>
 #include <filesystem>

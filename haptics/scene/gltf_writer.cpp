@@ -72,6 +72,7 @@ tinygltf::Value objectExtras(const SceneObject& object) {
   tinygltf::Value::Object voxhap;
   voxhap["role"] = tinygltf::Value(std::string(roleName(object.settings.role)));
   if (object.settings.densityKgPerM3) voxhap["density"] = tinygltf::Value(*object.settings.densityKgPerM3);
+  if (object.settings.pointOffsetM) voxhap["point_offset"] = tinygltf::Value(*object.settings.pointOffsetM);
   tinygltf::Value::Object extras;
   extras["voxhap"] = tinygltf::Value(std::move(voxhap));
   return tinygltf::Value(std::move(extras));

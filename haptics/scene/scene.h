@@ -74,6 +74,9 @@ struct Bounds {
 struct ObjectSettings {
   ObjectRole role = ObjectRole::Static;
   std::optional<double> densityKgPerM3;  ///< for mass and inertia; engine default if unset
+  /// Its points' displacement along their normals, m, negative inward: what seats a part
+  /// in a close fit (paper §3.2, mating surfaces). 0 if unset.
+  std::optional<double> pointOffsetM;
 };
 
 /// A logical object: one or more parts that collide as one rigid body.

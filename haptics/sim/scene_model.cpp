@@ -17,6 +17,10 @@ Pointshell pointshellOf(const SceneObject& object, const PointshellOptions& opti
   return pointshellCached(objects, options, CacheOptions{{}, false}, progress).pointshell;
 }
 
+double pointDisplacementOf(const SceneObject& object, const SceneModelOptions& options) {
+  return options.pointDisplacementM.value_or(object.settings.pointOffsetM.value_or(0.0));
+}
+
 BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& movingNames,
                       const SceneModelOptions& options, const ProgressFn& progress) {
   const ObjectSelection selection = selectObjects(scene, movingNames);
@@ -59,7 +63,7 @@ BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& moving
         makeRigidBodyModel(computeMassProperties(source, objectDensityKgPerM3(source)), source.name);
     PointshellOptions shellOptions;
     shellOptions.pointSpacingM = options.pointSpacingM;
-    shellOptions.displacementM = options.pointDisplacementM;
+    shellOptions.displacementM = pointDisplacementOf(source, options);
     shellOptions.freeLayer = options.pointFreeLayer;
     shellOptions.onSurface = options.sim.surfaceContact;
     object.shell = options.pointshellFn(source, shellOptions, stage(static_cast<double>(1 + 2 * i)));

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,8 +39,9 @@ struct SceneModelOptions {
   double staticVoxelSizeM = 0.0;  ///< voxel size of the static environment, m
   double pointSpacingM = 0.0;     ///< point spacing (and voxel size) of the moving objects, m
   int bitsPerField = 4;
-  /// Points displaced along their normals, m (negative: inward; mating surfaces).
-  double pointDisplacementM = 0.0;
+  /// Every moving object's points displaced along their normals, m (negative: inward;
+  /// mating surfaces). Unset: each object's own (ObjectSettings::pointOffsetM).
+  std::optional<double> pointDisplacementM;
   /// Take the moving objects' points from this free-space layer (0: the surface).
   int pointFreeLayer = 0;
   VoxelizeObjectsFn voxelizeFn = voxelizeObjects;
@@ -57,6 +59,10 @@ struct BuiltScene {
   SimModel model;
   std::shared_ptr<VoxelPager> staticPager;
 };
+
+/// The displacement of `object`'s points: options.pointDisplacementM when set, else the
+/// object's own point offset, else 0.
+double pointDisplacementOf(const SceneObject& object, const SceneModelOptions& options);
 
 /// The model of `scene` with `movingNames` moving (each coupled to a handle) and every
 /// other object static. A name is an object or a group, whose objects then move merged

@@ -16,7 +16,7 @@ constexpr glm::vec4 kFittingBrass{0.78f, 0.62f, 0.28f, 1.0f};
 SceneObject spareActuator(const SceneObject& actuator) {
   SceneObject spare;
   spare.name = "spare-actuator";
-  spare.settings.role = ObjectRole::Dynamic;
+  spare.settings = actuator.settings;
   const glm::vec3 offset(landing_gear::kSpareActuatorOffsetM);
   for (const Part& part : actuator.parts) {
     TriangleMesh mesh = part.mesh;

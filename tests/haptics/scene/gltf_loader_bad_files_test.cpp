@@ -581,6 +581,14 @@ TEST(GltfLoaderBadFiles, DensityAsString) {
   expectLoadError(cubeWithSettings(dir, {{"density", "heavy"}}), {"'cube'", "extras.voxhap.density"});
 }
 
+TEST(GltfLoaderBadFiles, PointOffsetBeyondOneMetreOrNotANumber) {
+  TempDir dir;
+  expectLoadError(cubeWithSettings(dir, {{"point_offset", -2}}),
+                  {"'cube'", "extras.voxhap.point_offset", "at most 1 m"});
+  expectLoadError(cubeWithSettings(dir, {{"point_offset", "-0.5mm"}}),
+                  {"'cube'", "extras.voxhap.point_offset"});
+}
+
 TEST(GltfLoaderBadFiles, ObjectNameNotAString) {
   TempDir dir;
   expectLoadError(cubeWithSettings(dir, {{"object", 5}}), {"'cube'", "extras.voxhap.object", "string"});

@@ -410,7 +410,8 @@ TEST(GltfLoader, PartWithoutMaterialIsWhite) {
 TEST(GltfLoader, ReadsVoxhapExtras) {
   GltfDoc doc;
   const int node = doc.addMeshNode(doc.addMesh(test::unitCube()), "cube node");
-  doc.node(node)["extras"] = test::voxhapExtras({{"role", "dynamic"}, {"object", "x"}, {"density", 7800}});
+  doc.node(node)["extras"] = test::voxhapExtras(
+      {{"role", "dynamic"}, {"object", "x"}, {"density", 7800}, {"point_offset", -0.0005}});
   TempDir dir;
   const Scene scene = loadGltfScene(test::writeDoc(doc, dir.path(), "extras", BufferStorage::Glb));
 
@@ -420,6 +421,7 @@ TEST(GltfLoader, ReadsVoxhapExtras) {
   EXPECT_EQ(object.settings.role, ObjectRole::Dynamic);
   ASSERT_TRUE(object.settings.densityKgPerM3.has_value());
   EXPECT_DOUBLE_EQ(*object.settings.densityKgPerM3, 7800.0);
+  EXPECT_EQ(object.settings.pointOffsetM, -0.0005);
   EXPECT_EQ(object.parts.at(0).name, "cube node");
   EXPECT_EQ(scene.triangleCount(ObjectRole::Dynamic), 12u);
   EXPECT_EQ(scene.triangleCount(ObjectRole::Static), 0u);

@@ -1,12 +1,16 @@
 // buildSceneModel: a group of a CAD file (no Voxhap extras) moves as one rigid body with
-// the mass of all its parts while everything else stays static.
+// the mass of all its parts while everything else stays static; each object's points are
+// displaced by its own point offset unless the options set one for all.
 #include "haptics/sim/scene_model.h"
+
+#include <map>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "haptics/core/error.h"
 #include "haptics/dynamics/mass_properties.h"
+#include "haptics/geometry/mesh_builder.h"
 #include "haptics/scene/gltf_loader.h"
 #include "haptics/sim/local_simulation.h"
 #include "support/contact_scenes.h"
@@ -82,6 +86,32 @@ TEST_F(SceneModelGroup, AGroupFallsOntoTheBlockAsOneBody) {
   EXPECT_NEAR(test::lowestZ(*scene.find("pin"), pose), kBlockTopZ + 0.003, kVoxel);
   EXPECT_LT(std::abs(pose.position.x) + std::abs(pose.position.y), kVoxel);
   EXPECT_GT(sim.object(0).contacts, 0u);
+}
+
+TEST(SceneModelPointOffset, EachObjectHasItsOwnUnlessTheOptionsSetOneForAll) {
+  Scene scene;
+  scene.objects.push_back(test::plate());
+  for (const char* name : {"seated", "plain"}) {
+    scene.objects.push_back(test::meshObject(name, ObjectRole::Dynamic, [](TriangleMesh& m) {
+      appendBox(m, test::at(0.0, 0.0, 0.02), glm::dvec3(0.005));
+    }));
+  }
+  scene.objects[1].settings.pointOffsetM = -0.0005;
+  SceneModelOptions options = test::ampleCapacityOptions();
+  options.staticVoxelSizeM = 0.001;
+  options.pointSpacingM = 0.001;
+  std::map<std::string, double> displacementM;
+  options.pointshellFn = [&displacementM](const SceneObject& object, const PointshellOptions& o,
+                                          const ProgressFn& progress) {
+    displacementM[object.name] = o.displacementM;
+    return pointshellOf(object, o, progress);
+  };
+  buildSceneModel(scene, {"seated", "plain"}, options);
+  EXPECT_EQ(displacementM, (std::map<std::string, double>{{"plain", 0.0}, {"seated", -0.0005}}));
+
+  options.pointDisplacementM = 0.0002;
+  buildSceneModel(scene, {"seated", "plain"}, options);
+  EXPECT_EQ(displacementM, (std::map<std::string, double>{{"plain", 0.0002}, {"seated", 0.0002}}));
 }
 
 }  // namespace
