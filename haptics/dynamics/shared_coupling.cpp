@@ -47,7 +47,8 @@ SharedCoupling sharedCouplingWrench(const CouplingGains& stiffest, const RigidBo
   for (const RemoteInstance& remote : remotes) {
     const double w = delayWeight(remote.delayS) * ageWeight(remote.ageS, omegaRadS);
     if (w == 0.0 || !isFiniteWithUnitOrientation(remote.state)) continue;
-    const RigidBodyState r = predicted(remote.state, std::max(remote.ageS, 0.0));
+    const RigidBodyState r =
+        predicted(remote.state, std::clamp(remote.leadS, 0.0, std::max(remote.ageS, 0.0)));
     weightSum += w;
     squareSum += w * w;
     com += w * r.comWorld;

@@ -31,11 +31,16 @@
 /// The stiffness that a allows falls as 1/a², faster than the paper's linear fade, which
 /// stays for a stream that stops.
 ///
-/// Prediction: a remote state is carried forward by its age along its own velocities, so
-/// that instances moving together pull on each other not at all. Without it each is pulled
-/// back by k·v·a: at the handle's stiffness, 0.1 m/s behind an instance 30 ms old held the
+/// Prediction: a remote state is carried forward along its own velocities, so that
+/// instances moving together pull each other back little. Without it each is pulled back
+/// by k·v·a: at the handle's stiffness, 0.1 m/s behind an instance 30 ms old held the
 /// landing gear's actuator in its jaws against its users' 100 N (`voxhap demo`, whose
-/// passivity controllers dissipated 1.5 kJ in 30 s).
+/// passivity controllers dissipated 1.5 kJ in 30 s). It goes no further than a lower bound
+/// of the age, the play-out delay: carried beyond the present, the states of instances
+/// moving together would pull each one forward, k·v per second of excess, a negative
+/// damping that sped a released pair up (SharedObjectCommand, 100 ms without the passivity
+/// controller: 1.0 to 1.4 mm/s in 2 s, when the lead was the measured one-way delay, a
+/// filtered mean above the least delay the jitter buffer plays at, plus the play-out delay).
 ///
 /// Divergence (paper §6.1: something, a thin wall, trapped between the instances): the
 /// local instance is divergent when it is further than a bound from the remote instances'
@@ -62,6 +67,9 @@ struct RemoteInstance {
   RigidBodyState state;  ///< played out to this frame (jitter buffer)
   double delayS = 0.0;   ///< its stream's one-way delay, or its newest state's age if larger, s
   double ageS = 0.0;     ///< how old `state` is: its stream's one-way delay and the play-out delay, s
+  /// How far `state` is carried forward along its velocities, s: no more than its age
+  /// (see the file comment), the play-out delay.
+  double leadS = 0.0;
 };
 
 /// ω_n·a of the stiffest spring to an instance of age a (see the file comment).

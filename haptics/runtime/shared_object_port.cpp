@@ -64,7 +64,7 @@ const SharedObjectPort::Frame& SharedObjectPort::step(std::int64_t nowUs, const 
     }
     // the delay whose weight is `weight` (shared_coupling.h)
     instances_[n++] = {state, kSharedCouplingFadeDelayS * (1.0 - weight),
-                       r.oneWayS + r.buffer.playoutDelayS()};
+                       r.oneWayS + r.buffer.playoutDelayS(), r.buffer.playoutDelayS()};
     if (weight > 0.0) ++frame_.counted;
     othersInJ += r.inJ;
   }

@@ -68,12 +68,20 @@ TEST(SharedCoupling, InstancesMovingTogetherDoNotPullOnEachOtherHoweverOldTheRem
   RigidBodyState then = local;
   then.comWorld -= local.linearVelocityWorld * ageS;
   then.orientation = quatFromRotationVector(-local.angularVelocityWorld * ageS) * local.orientation;
-  const std::vector<RemoteInstance> remotes = {{then, 0.0, ageS}};
+  const std::vector<RemoteInstance> remotes = {{then, 0.0, ageS, ageS}};
   const SharedCoupling c = sharedCouplingWrench(gains, model, local, remotes);
   EXPECT_GT(c.stiffnessShare, 0.0);
   EXPECT_LT(c.apartM, 1e-12);
   EXPECT_LT(glm::length(c.onLocal.forceWorld), 1e-9);
   EXPECT_LT(glm::length(c.onLocal.torqueWorld), 1e-9);
+  // a lead beyond the age is cut to it: no push along the motion
+  const std::vector<RemoteInstance> beyond = {{then, 0.0, ageS, 2.0 * ageS}};
+  EXPECT_LT(glm::length(sharedCouplingWrench(gains, model, local, beyond).onLocal.forceWorld), 1e-9);
+  // a lead short of the age leaves the state behind: a pull against the motion (damping)
+  const std::vector<RemoteInstance> behind = {{then, 0.0, ageS, 0.5 * ageS}};
+  EXPECT_LT(glm::dot(sharedCouplingWrench(gains, model, local, behind).onLocal.forceWorld,
+                     local.linearVelocityWorld),
+            0.0);
 }
 
 TEST(SharedCoupling, ARemoteInstanceAwayPullsWithTheFullStiffnessAtNoDelay) {
