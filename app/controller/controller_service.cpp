@@ -6,6 +6,7 @@
 #include "haptics/core/error.h"
 #include "haptics/device/motion_script.h"
 #include "haptics/device/simulated_hand_device.h"
+#include "haptics/scene/scene.h"
 #include "net/frontend/pose_proto.h"
 
 namespace voxhap::controller {
@@ -37,7 +38,7 @@ bool sizesInRange(const pb::LoadScene& request, pb::ServerMessage& reply) {
       return false;
     }
   }
-  if (!(std::abs(request.point_offset_m()) <= 1.0)) {
+  if (!(std::abs(request.point_offset_m()) <= kMaxPointOffsetM)) {
     fail(reply, "point_offset_m wants a length of at most 1 m either way", "point_offset_m");
     return false;
   }

@@ -30,8 +30,6 @@ std::string quoted(const std::string& name) {
 // the end of the stack; real glTF files stay within a few dozen levels.
 constexpr std::size_t kMaxJsonDepth = 256;
 constexpr std::size_t kMaxNodeDepth = 256;
-/// Largest point offset either way, m (as a controller takes from a client).
-constexpr double kMaxPointOffsetM = 1.0;
 
 /// Deepest nesting of JSON arrays and objects in `text`, not counting brackets in strings.
 std::size_t jsonNestingDepth(const unsigned char* text, std::size_t size) {

@@ -70,6 +70,9 @@ struct Bounds {
   glm::dvec3 extent() const { return empty() ? glm::dvec3(0.0) : max - min; }
 };
 
+/// The largest point offset either way that a scene or a client may give, m.
+constexpr double kMaxPointOffsetM = 1.0;
+
 /// Per-object settings read from a node's `extras.voxhap` (DESIGN §5).
 struct ObjectSettings {
   ObjectRole role = ObjectRole::Static;
