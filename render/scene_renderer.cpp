@@ -23,6 +23,7 @@ struct MovingObject {
   std::string name;
   MeshBuffers buffers;
   Pose pose;
+  std::optional<Pose> otherInstance;
   bool proximityShown = false;
   std::vector<Rgba8> coloursScratch;  ///< sized once: no allocation per frame
 };
@@ -121,7 +122,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, std::span<const std::string> mo
   impl_ = std::make_unique<Impl>();
   impl_->moving.reserve(movingNames.size());
   for (const std::string& name : movingNames) {
-    MovingObject object{name, MeshBuffers(*scene.find(name), true), Pose{}, false, {}};
+    MovingObject object{name, MeshBuffers(*scene.find(name), true), Pose{}, std::nullopt, false, {}};
     object.coloursScratch.resize(object.buffers.vertexCount());
     impl_->moving.push_back(std::move(object));
   }
@@ -185,6 +186,10 @@ void SceneRenderer::setForceArrow(const std::optional<ForceArrow>& arrow) {
   impl_->arrow = arrow;
 }
 
+void SceneRenderer::setOtherInstance(std::size_t movingIndex, const std::optional<Pose>& pose) {
+  impl_->movingAt(movingIndex).otherInstance = pose;
+}
+
 void SceneRenderer::draw(const OrbitCamera& camera, const glm::ivec2& viewportPx, bool useStaticCache) {
   Impl& d = *impl_;
   const glm::dmat4 viewProjection = camera.viewProjection(viewportPx);
@@ -226,6 +231,17 @@ void SceneRenderer::draw(const OrbitCamera& camera, const glm::ivec2& viewportPx
       d.drawObject(d.arrowBuffers, glm::mat4(model), false, &options_.forceArrowColour);
     }
   }
+  // other instances blended over what is drawn, without hiding what lies behind them
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);
+  for (const MovingObject& object : d.moving) {
+    if (object.otherInstance)
+      d.drawObject(object.buffers, modelMatrixOf(*object.otherInstance), false,
+                   &options_.otherInstanceColour);
+  }
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
 
   // overlays in flat colours: contact points opaque, shadow voxels blended without
   // writing depth so that they tint whatever lies behind them

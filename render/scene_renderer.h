@@ -36,6 +36,9 @@ struct SceneRendererOptions {
   glm::vec4 shadowVoxelColour{0.45f, 0.1f, 0.85f, 0.6f};  ///< linear RGB, alpha blended
   glm::vec4 contactPointColour{1.0f, 1.0f, 1.0f, 1.0f};   ///< linear RGB, opaque
   glm::vec4 forceArrowColour{0.1f, 0.9f, 0.2f, 1.0f};     ///< linear RGB
+  /// Another instance of a moving object (a shared part on another peer, while the
+  /// instances diverge): linear RGB, alpha blended, so that it reads as not this one.
+  glm::vec4 otherInstanceColour{1.0f, 0.3f, 0.05f, 0.45f};
 };
 
 /// The force on the moving object, drawn as an arrow from `originWorld`.
@@ -86,6 +89,10 @@ public:
   /// Contact points as small opaque cubes of `sizeM`. Empty: none.
   void setContactPoints(std::span<const glm::vec3> pointsWorld, float sizeM);
   void setForceArrow(const std::optional<ForceArrow>& arrow);
+  /// Another instance of a moving object at `pose` (a shared part as another peer has it),
+  /// drawn in the options' otherInstanceColour over the scene; nullopt: none. Throws
+  /// voxhap::Error on a bad index.
+  void setOtherInstance(std::size_t movingIndex, const std::optional<Pose>& pose);
 
   /// Draws a frame into the default framebuffer over `viewportPx` (its full size).
   /// `useStaticCache`: static objects from the cache (redrawn only when the view or the

@@ -15,6 +15,7 @@
 #include "app/scene_source.h"
 #include "haptics/core/error.h"
 #include "haptics/scene/object_selection.h"
+#include "net/frontend/pose_proto.h"
 #include "net/peer/peer_session.h"
 
 namespace voxhap::cli {
@@ -176,15 +177,24 @@ std::string whyNotGrab(net::PeerSession& peer, const SimModel& model, std::size_
          "'s: asked for it; it comes here once nobody holds it there; grab it again then";
 }
 
-/// The shared objects' sharers in `update`, and whether any of them sees its instance
-/// divergent.
-void annotateShared(const net::PeerSession& peer, net::pb::FrameUpdate& update) {
+/// The shared objects' sharers in `update`, whether any of them sees its instance
+/// divergent, and then the instances this peer does not show: on a sharer every other
+/// one, elsewhere all but the owner's.
+void annotateShared(const net::PeerSession& peer, const SimModel& model, net::pb::FrameUpdate& update) {
   for (net::pb::ObjectState& o : *update.mutable_objects()) {
     const std::vector<net::SharerView> others = peer.sharers(o.index());
     if (peer.sharing(o.index())) o.add_sharer_peers(peer.self());
     for (const net::SharerView& v : others) {
       o.add_sharer_peers(v.peer);
       if (v.divergent) o.set_divergent(true);
+    }
+    if (!o.divergent() || o.index() >= model.objects.size()) continue;
+    const PeerId shown = peer.sharing(o.index())            ? peer.self()
+                         : o.index() < peer.owners().size() ? peer.owners()[o.index()]
+                                                            : kNoPeer;
+    for (const net::SharerView& v : others) {
+      if (v.peer != shown)
+        net::toProto(v.instance.pose(model.objects[o.index()].body), *o.add_other_instances());
     }
   }
 }
@@ -357,9 +367,10 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
     console.info(realtimeLine(session->loop->realtime()));
   if (peer) {
     const SimModel& model = service.session()->built->model;
-    service.setPeerHooks({[&peer, &model](std::size_t object) { return whyNotGrab(*peer, model, object); },
-                          "in a peer session the scene, its sizes and the force layer are every peer's",
-                          [&peer](net::pb::FrameUpdate& update) { annotateShared(*peer, update); }});
+    service.setPeerHooks(
+        {[&peer, &model](std::size_t object) { return whyNotGrab(*peer, model, object); },
+         "in a peer session the scene, its sizes and the force layer are every peer's",
+         [&peer, &model](net::pb::FrameUpdate& update) { annotateShared(*peer, model, update); }});
     link = std::make_unique<controller::PeerLink>(
         io, *peer, service,
         controller::PeerLinkOptions{options.peer->streamHz, options.peer->take, options.device,

@@ -244,6 +244,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
         const pb::ObjectState& o = state.frame->objects(k);
         movingPose[i] = net::fromProto(o.pose());
         renderer.setPose(i, movingPose[i]);
+        renderer.setOtherInstance(i, net::furthestOtherInstance(o));
         const glm::dvec3 forceN(o.force_n().x(), o.force_n().y(), o.force_n().z());
         if (myGrabs.count(moving[i]) && glm::length(forceN) > 0.0)
           arrow = render::ForceArrow{apply(movingPose[i], centreLocal[i]), forceN, 0.002};

@@ -1,6 +1,10 @@
 #pragma once
 /// The engine's vectors and poses as the front-end protocol's messages, and back.
 
+#include <optional>
+
+#include <glm/geometric.hpp>
+
 #include "haptics/dynamics/pose.h"
 #include "net/proto/frontend.pb.h"
 
@@ -29,6 +33,19 @@ inline Pose fromProto(const pb::Pose& p) {
   pose.orientation =
       quatWxyz(p.orientation().w(), p.orientation().x(), p.orientation().y(), p.orientation().z());
   return pose;
+}
+
+/// Of a divergent shared object's other instances, the one furthest from the shown pose
+/// (what a front end draws marked); none when it has none.
+inline std::optional<Pose> furthestOtherInstance(const pb::ObjectState& o) {
+  std::optional<Pose> furthest;
+  const glm::dvec3 shown = fromProto(o.pose()).position;
+  for (const pb::Pose& p : o.other_instances()) {
+    const Pose other = fromProto(p);
+    if (!furthest || glm::length(other.position - shown) > glm::length(furthest->position - shown))
+      furthest = other;
+  }
+  return furthest;
 }
 
 }  // namespace voxhap::net

@@ -78,6 +78,7 @@ struct SharerView {
   PeerId peer = kNoPeer;
   double oneWayMs = -1.0;  ///< < 0: not measured yet
   bool divergent = false;
+  RigidBodyState instance;  ///< as last heard
 };
 
 /// What the session counted, for statistics and tests.
@@ -167,7 +168,8 @@ private:
     std::string name;
     Clock::time_point heard{};
     std::set<std::uint32_t> owns, wants, holding, shares, divergent;
-    std::uint32_t theirSentUs = 0;  ///< header send time of their newest datagram
+    std::map<std::uint32_t, RigidBodyState> instances;  ///< of what it shares, as last heard
+    std::uint32_t theirSentUs = 0;                      ///< header send time of their newest datagram
     Clock::time_point theirSentAt{};
     bool heardDirectly = false;
     OneWayDelay delay;

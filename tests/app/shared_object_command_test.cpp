@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "haptics/dynamics/virtual_coupling.h"
+#include "net/frontend/pose_proto.h"
 #include "support/newest_update.h"
 #include "support/peer_processes.h"
 
@@ -413,6 +414,20 @@ TEST_F(SharedObjectCommand, AWallBetweenTwoInstancesIsFlaggedEverywhereAndNotPus
   slideHandle(*clients[0], "middle", up, over);
   slideHandle(*clients[0], "middle", over, beyond);
   EXPECT_TRUE(allSeeDivergence(clients, true));
+  // every peer also shows, marked, the instance it does not collide with: each sharer the
+  // other's, the watcher the one it does not follow (it follows the lowest-numbered sharer)
+  const glm::dvec3 at0 = middleOf(*clients[0]), at1 = middleOf(*clients[1]);
+  const auto near = [](const glm::dvec3& a, const glm::dvec3& b) { return glm::length(a - b) < 0.001; };
+  for (std::size_t k = 0; k < clients.size(); ++k) {
+    const pb::ObjectState o = newestUpdate(*clients[k]).objects(kMiddle);
+    ASSERT_EQ(o.other_instances_size(), 1) << k << ": " << o.DebugString();
+    const glm::dvec3 shown = positionOf(o), other = net::fromProto(o.other_instances(0)).position;
+    EXPECT_TRUE((near(shown, at0) && near(other, at1)) || (near(shown, at1) && near(other, at0)))
+        << k << ": " << o.DebugString();
+    if (k < 2) {
+      EXPECT_TRUE(near(shown, k == 0 ? at0 : at1)) << k << ": " << o.DebugString();
+    }
+  }
   std::this_thread::sleep_for(1s);
   watching = false;
   watch.join();
@@ -426,6 +441,7 @@ TEST_F(SharedObjectCommand, AWallBetweenTwoInstancesIsFlaggedEverywhereAndNotPus
   slideHandle(*clients[1], "middle", up, over);
   slideHandle(*clients[1], "middle", over, beyond);
   EXPECT_TRUE(allSeeDivergence(clients, false));
+  for (auto& c : clients) EXPECT_EQ(newestUpdate(*c).objects(kMiddle).other_instances_size(), 0);
   const double apartM = apartFromFirst(clients, 2);
   std::vector<nlohmann::json> summaries;
   for (Peer* p : {&watcher, &s1, &s0}) summaries.push_back(stop(*p));

@@ -219,6 +219,27 @@ TEST_F(WallAndSlider, ForceArrowAndContactPointsAppear) {
   EXPECT_FALSE(test::greenish(gone)) << describe(gone);
 }
 
+TEST_F(WallAndSlider, AnotherInstanceShowsInItsOwnColourOverWhatLiesBehindIt) {
+  // in front of the wall's seen face, where it hides part of it
+  const glm::dvec3 there = test::kWallCentre - 0.1 * viewDirectionTo(test::kWallCentre);
+  const Pixel plain = at(frame(true), test::kWallCentre);
+  renderer->setOtherInstance(0, sliderAt(there));
+  const RgbImage image = frame(true);
+  const Pixel marked = at(image, test::kWallCentre);
+  // the otherInstanceColour (orange-red) blended over the red wall: more green than the
+  // wall alone, still reddish, not the slider's blue
+  EXPECT_TRUE(test::reddish(plain)) << describe(plain);
+  EXPECT_GT(int(marked[1]), int(plain[1]) + 20) << describe(plain) << " → " << describe(marked);
+  EXPECT_FALSE(test::bluish(marked)) << describe(marked);
+  // the object's own instance is still where its pose says
+  EXPECT_TRUE(test::bluish(at(image, test::kSliderCentre))) << describe(at(image, test::kSliderCentre));
+  EXPECT_EQ(renderer->stats().cache.redraws, 1u);
+
+  renderer->setOtherInstance(0, std::nullopt);
+  EXPECT_EQ(at(frame(true), test::kWallCentre), plain);
+  EXPECT_THROW(renderer->setOtherInstance(1, Pose{}), Error);
+}
+
 TEST(SceneRenderer, UnknownMovingObjectIsAClearError) {
   test::glTestContext();
   const Scene scene = test::wallAndSlider();
