@@ -112,6 +112,12 @@ CrewSessionResult runCrewSession(const CrewSessionOptions& options, Console& con
     peers.push_back(std::move(p));
   }
 
+  if (options.onStarted) {
+    std::vector<std::uint16_t> ports;
+    for (const auto& p : peers) ports.push_back(p->controller->port());
+    options.onStarted(ports);
+  }
+
   CrewSessionResult result;
   // the moving objects' names, in the frame updates' order
   pb::ClientMessage list;
@@ -160,6 +166,7 @@ CrewSessionResult runCrewSession(const CrewSessionOptions& options, Console& con
       for (const pb::ObjectState& o : u.objects()) {
         s.poses.push_back(net::fromProto(o.pose()));
         s.divergent.push_back(o.divergent());
+        s.otherInstance.push_back(net::furthestOtherInstance(o));
         s.contacts.push_back(o.contacts());
       }
       leastPlayedS = std::min(leastPlayedS, s.playedS);

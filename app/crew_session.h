@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,9 @@ struct CrewSessionOptions {
   bool realtime = true;
   double sampleHz = 20.0;    ///< how often each peer's poses are recorded
   double patienceS = 120.0;  ///< for the peers to start, join and settle who has what
+  /// Called once every peer has started, with each user's controller's front-end port on
+  /// 127.0.0.1 (in the users' order), e.g. to watch one through a window.
+  std::function<void(const std::vector<std::uint16_t>&)> onStarted;
 };
 
 /// What one peer showed at one moment.
@@ -45,6 +49,8 @@ struct CrewSample {
   double playedS = 0.0;         ///< its simulated time since the common grab
   std::vector<Pose> poses;      ///< every moving object, relative to its place in the scene
   std::vector<bool> divergent;  ///< every moving object: a shared one's instances are apart
+  /// every moving object: while divergent, the instance furthest from the one this peer shows
+  std::vector<std::optional<Pose>> otherInstance;
   std::vector<std::uint32_t> contacts;
 };
 

@@ -24,12 +24,6 @@ std::mutex& glfwMutex() {
 }
 int glfwUsers = 0;  ///< live GlContexts; guarded by glfwMutex
 
-bool hasDisplay() {
-  const char* x11 = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  return (x11 && *x11) || (wayland && *wayland);
-}
-
 void acquireGlfw() {
   std::lock_guard lock(glfwMutex());
   if (glfwUsers == 0) {
@@ -46,6 +40,12 @@ void releaseGlfw() {
 }
 
 }  // namespace
+
+bool hasDisplay() {
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x11 && *x11) || (wayland && *wayland);
+}
 
 GlContext::GlContext(const GlContextOptions& options) {
   acquireGlfw();

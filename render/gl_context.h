@@ -16,6 +16,9 @@ struct GLFWwindow;
 namespace voxhap::render {
 
 /// How to open the window.
+/// Whether the environment names a display (DISPLAY or WAYLAND_DISPLAY) to open windows on.
+bool hasDisplay();
+
 struct GlContextOptions {
   int widthPx = 1280;  ///< window size in screen coordinates (= pixels without HiDPI scaling)
   int heightPx = 720;

@@ -38,7 +38,7 @@ struct SceneRendererOptions {
   glm::vec4 forceArrowColour{0.1f, 0.9f, 0.2f, 1.0f};     ///< linear RGB
   /// Another instance of a moving object (a shared part on another peer, while the
   /// instances diverge): linear RGB, alpha blended, so that it reads as not this one.
-  glm::vec4 otherInstanceColour{1.0f, 0.3f, 0.05f, 0.45f};
+  glm::vec4 otherInstanceColour{1.0f, 0.25f, 0.0f, 0.6f};
 };
 
 /// The force on the moving object, drawn as an arrow from `originWorld`.

@@ -87,6 +87,10 @@ case "${1:-}" in
     shift
     install_missing
     build release
+    # without a display: no window, and the pictures drawn in a virtual one
+    if [ -z "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ] && command -v xvfb-run >/dev/null 2>&1; then
+      exec xvfb-run -a build/release/app/voxhap demo --headless "$@"
+    fi
     exec build/release/app/voxhap demo "$@"
     ;;
   format)

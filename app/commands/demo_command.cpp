@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <future>
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -21,10 +23,14 @@
 #include "app/crew_session.h"
 #include "app/extraction.h"
 #include "app/scene_source.h"
+#include "app/session_shots.h"
 #include "app/sim_options.h"
+#include "app/view/view_run.h"
 #include "haptics/collide/exact_penetration.h"
+#include "haptics/core/error.h"
 #include "haptics/device/motion_script.h"
 #include "haptics/scene/builtin/builtin_scenes.h"
+#include "render/gl_context.h"
 
 namespace voxhap::cli {
 namespace {
@@ -38,12 +44,28 @@ std::filesystem::path script(const char* name) {
   return std::filesystem::path(VOXHAP_ASSET_DIR) / "scripts" / name;
 }
 
+/// The pictures' size, px.
+constexpr glm::ivec2 kShotSizePx{1280, 720};
+
 /// What `voxhap demo` was given.
 struct DemoArgs {
   SimOptions sim;
   bool noPassivity = false;
   bool noRealtime = false;
   bool json = false;
+  std::filesystem::path screenshotDir = "voxhap-demo";
+  bool noScreenshots = false;
+  bool headless = false;
+};
+
+/// The live window's frame rate cap, Hz: three haptic peers share this machine with it.
+constexpr double kWindowFrameRateHz = 30.0;
+
+/// A picture the demo wrote, and what it shows.
+struct ShotFigures {
+  std::filesystem::path file;
+  double playedS = 0.0;
+  std::string what;
 };
 
 /// The figures of one peer, from its summary and the samples of it.
@@ -64,6 +86,87 @@ struct PairFigures {
   double atS = 0.0;
 };
 
+/// cyd's view of the session at a few moments, as its peer showed it: ann's instance of the
+/// actuator (the lowest-numbered sharer's, which cyd follows), and bob's too, marked, while
+/// the two were divergent; and the moment they were furthest apart on cyd's peer, when they
+/// ever were divergent. Throws voxhap::Error without a display.
+std::vector<ShotFigures> writeDemoShots(const Scene& scene, const CrewSessionResult& r, std::size_t actuator,
+                                        const std::filesystem::path& dir) {
+  constexpr std::size_t kCyd = 2, kPeers = 3;
+  // the session samples every peer in turn: samples[3 i + k] is peer k's i-th
+  const std::size_t rounds = r.samples.size() / kPeers;
+  if (rounds == 0) throw Error("the session recorded no samples");
+  const auto sample = [&r](std::size_t round, std::size_t peer) -> const CrewSample& {
+    return r.samples[kPeers * round + peer];
+  };
+  const auto roundAt = [&](double playedS) {
+    std::size_t i = 0;
+    while (i + 1 < rounds && sample(i, kCyd).playedS < playedS) ++i;
+    return i;
+  };
+  std::vector<std::pair<std::size_t, std::string>> moments = {
+      {roundAt(1.0), "the actuator still seated in the gear"},
+      {roundAt(17.0), "the spare actuator lifted into the actuator's way, which waits"},
+      {rounds - 1, "the actuator out of the gear, at its path's end"}};
+  double widestM = 0.0;
+  std::size_t widest = 0;
+  for (std::size_t i = 0; i < rounds; ++i) {
+    const CrewSample& s = sample(i, kCyd);
+    if (!s.otherInstance[actuator]) continue;
+    const double apartM = glm::length(s.poses[actuator].position - s.otherInstance[actuator]->position);
+    if (apartM > widestM) {
+      widestM = apartM;
+      widest = i;
+    }
+  }
+  if (widestM > 0.0)
+    moments.emplace_back(widest, "the actuator's instances furthest apart while divergent (" +
+                                     fixed(widestM * 1e3, 1) + " mm): bob's marked");
+
+  std::filesystem::create_directories(dir);
+  std::vector<SessionShot> shots;
+  std::vector<ShotFigures> figures;
+  const SceneObject& moved = *scene.find("actuator");
+  Bounds focus;
+  for (std::size_t i = 0; i < rounds; i += 10) focus.add(boundsAt(moved, sample(i, kCyd).poses[actuator]));
+  for (std::size_t m = 0; m < moments.size(); ++m) {
+    const CrewSample& s = sample(moments[m].first, kCyd);
+    SessionShot& shot = shots.emplace_back();
+    shot.file = dir / ("demo-" + std::to_string(m + 1) + ".png");
+    shot.poses = s.poses;
+    shot.otherInstances = s.otherInstance;
+    figures.push_back({shot.file, s.playedS, moments[m].second});
+  }
+  writeSessionShots(scene, r.objects, focus, shots, kShotSizePx);
+  return figures;
+}
+
+/// A window on cyd's peer while the session plays (a passive `voxhap view --connect`); it
+/// closes when the session ends, or earlier by its user, which leaves the session playing.
+/// Returns the window's summary (`voxhap view --json`), none when it could not open.
+std::optional<nlohmann::json> watchSession(std::future<std::uint16_t> port,
+                                           std::future<CrewSessionResult>& session, const CommandContext& c) {
+  using namespace std::chrono_literals;
+  while (port.wait_for(100ms) != std::future_status::ready) {
+    if (session.wait_for(0s) == std::future_status::ready) return std::nullopt;  // it failed to start
+  }
+  ViewOptions view;
+  view.scene = kScene;
+  view.connect = HostPort{"127.0.0.1", port.get()};
+  view.passive = true;
+  view.endsWithController = true;
+  view.maxFrameRateHz = kWindowFrameRateHz;
+  view.json = true;
+  std::ostringstream summary;
+  try {
+    runView(view, c.console, summary);
+  } catch (const std::exception& e) {
+    c.console.warning(std::string("the window closed: ") + e.what());
+    return std::nullopt;
+  }
+  return nlohmann::json::parse(summary.str(), nullptr, false);
+}
+
 int runDemo(const DemoArgs& args, const CommandContext& c) {
   CrewSessionOptions options;
   options.scene = kScene;
@@ -80,7 +183,16 @@ int runDemo(const DemoArgs& args, const CommandContext& c) {
 
   c.console.info("preparing " + std::string(kScene) + " (generated and voxelized once, then cached)");
   const Scene scene = loadScene(kScene, kDefaultSeed, c.console);
-  const CrewSessionResult r = runCrewSession(options, c.console, c.console.progress("playing the session"));
+  const bool window = !args.headless && render::hasDisplay();
+  std::promise<std::uint16_t> watched;  // cyd's peer's front-end port, for the window
+  options.onStarted = [&watched](const std::vector<std::uint16_t>& ports) { watched.set_value(ports[2]); };
+  // the window shows how far it has got; without one, a progress bar on a terminal
+  const std::function<void(double)> progress = window ? nullptr : c.console.progress("playing the session");
+  std::future<CrewSessionResult> session =
+      std::async(std::launch::async, [&] { return runCrewSession(options, c.console, progress); });
+  const std::optional<nlohmann::json> windowSummary =
+      window ? watchSession(watched.get_future(), session, c) : std::nullopt;
+  const CrewSessionResult r = session.get();
 
   const auto indexOf = [&r](const std::string& name) {
     return static_cast<std::size_t>(std::find(r.objects.begin(), r.objects.end(), name) - r.objects.begin());
@@ -129,6 +241,16 @@ int runDemo(const DemoArgs& args, const CommandContext& c) {
     }
   }
 
+  std::vector<ShotFigures> shots;
+  if (!args.noScreenshots) {
+    c.console.info("drawing cyd's view at a few moments into " + args.screenshotDir.string());
+    try {
+      shots = writeDemoShots(scene, r, actuator, args.screenshotDir);
+    } catch (const Error& e) {
+      c.console.warning(std::string("no pictures: ") + e.what());
+    }
+  }
+
   if (args.json) {
     nlohmann::ordered_json j = {{"scene", kScene},
                                 {"played_s", options.playS},
@@ -156,6 +278,11 @@ int runDemo(const DemoArgs& args, const CommandContext& c) {
                           {"at_s", p.atS}});
     }
     j["exact_overlaps"] = overlaps;
+    nlohmann::ordered_json pictures = nlohmann::ordered_json::array();
+    for (const ShotFigures& s : shots)
+      pictures.push_back({{"file", s.file.string()}, {"played_s", s.playedS}, {"shows", s.what}});
+    j["pictures"] = pictures;
+    j["window"] = windowSummary ? *windowSummary : nlohmann::json();
     c.out << j.dump(2) << "\n";
     return kExitOk;
   }
@@ -195,6 +322,15 @@ int runDemo(const DemoArgs& args, const CommandContext& c) {
   c.out << "came out         " << (cameOut ? "yes" : "no") << ": the actuator "
         << (cameOut ? "reached" : "did not reach")
         << " its path's end (0.43 m outside the gear) on every peer\n";
+  if (windowSummary) {
+    const nlohmann::json& w = *windowSummary;
+    c.out << "window           cyd's view, " << w.value("frames_cached", 0) + w.value("frames_uncached", 0)
+          << " frames at " << fixed(w.value("fps_cached", 0.0), 1) << " fps (at most "
+          << fixed(kWindowFrameRateHz, 0) << ")\n";
+  }
+  for (const ShotFigures& s : shots)
+    c.out << "picture          " << s.file.string() << ": " << fixed(s.playedS, 1) << " s, " << s.what
+          << "\n";
   return kExitOk;
 }
 
@@ -205,7 +341,8 @@ void addDemoCommand(CommandTree& tree) {
   help.summary = "The main job: three peers pull the actuator out of the landing gear together, and report.";
   help.usage =
       "voxhap demo [--voxel-size LENGTH] [--point-spacing LENGTH] [--capacity N] [--no-passivity]\n"
-      "       [--no-realtime] [--cache-dir DIR] [--no-cache] [--json]";
+      "       [--no-realtime] [--headless] [--screenshots DIR | --no-screenshots] [--cache-dir DIR]\n"
+      "       [--no-cache] [--json]";
   help.description =
       "A design review of the paper's maintenance task (§7) by three engineers, each at a peer\n"
       "of their own (`voxhap peer`; here all three in this process, on loopback): ann and bob\n"
@@ -224,9 +361,19 @@ void addDemoCommand(CommandTree& tree) {
       "recorded at 20 Hz); and whether the actuator came out: reached its path's end, 0.43 m\n"
       "outside the gear, within 10 mm on every peer. The overlap with the static gear is\n"
       "measured by `voxhap extract`, the same job for one user, offline.\n\n"
+      "Where there is a display (DISPLAY or WAYLAND_DISPLAY) a window shows the session live as\n"
+      "cyd's peer shows it (`voxhap view --connect` on it, passive, at most 30 frames a second);\n"
+      "it closes when the session ends. --headless: none.\n\n"
+      "Pictures: cyd's view at 1 s, at 17 s (the spare in the actuator's way) and at the end,\n"
+      "1280x720 PNG files in --screenshots DIR (default ./voxhap-demo). Where ann's and bob's\n"
+      "instances of the actuator were divergent, bob's is drawn too, in translucent orange (cyd\n"
+      "follows and collides with ann's); a fourth picture shows them furthest apart, when they\n"
+      "ever were. Drawing needs an X display: without one (and without `xvfb-run -a`, which\n"
+      "`bash tools/setup.sh demo` uses then) the demo says so and reports without pictures.\n\n"
       "Examples:\n"
       "  voxhap demo\n"
-      "  voxhap demo --no-passivity --json";
+      "  xvfb-run -a voxhap demo --headless --screenshots /tmp/demo\n"
+      "  voxhap demo --no-passivity --no-screenshots --json";
   auto args = std::make_shared<DemoArgs>();
   CLI::App& command = tree.add(tree.root(), "demo", std::move(help),
                                [args](const CommandContext& c) { return runDemo(*args, c); });
@@ -237,6 +384,12 @@ void addDemoCommand(CommandTree& tree) {
   command.add_flag("--no-passivity", args->noPassivity,
                    "couple the actuator's instances without the passivity controller");
   command.add_flag("--no-realtime", args->noRealtime, "no SCHED_FIFO or mlockall for the haptic threads");
+  CLI::Option* pictures =
+      command
+          .add_option("--screenshots", args->screenshotDir, "folder for the pictures (default ./voxhap-demo)")
+          ->type_name("DIR");
+  command.add_flag("--no-screenshots", args->noScreenshots, "draw no pictures")->excludes(pictures);
+  command.add_flag("--headless", args->headless, "no window, even where there is a display");
   addSimOptions(command, args->sim, {SimOption::Cache});
   command.add_flag("--json", args->json, "print one JSON summary on stdout instead of text");
 }

@@ -404,6 +404,10 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     if (actions.frameScene)
       camera.frame(renderer.sceneBounds(), static_cast<double>(fb.x) / std::max(1, fb.y));
 
+    if (options.maxFrameRateHz > 0.0)
+      std::this_thread::sleep_until(frameStart +
+                                    std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(1.0 / options.maxFrameRateHz)));
     const Clock::time_point frameEnd = Clock::now();
     const double frameS = std::chrono::duration<double>(frameEnd - frameStart).count();
     frameStart = frameEnd;

@@ -36,6 +36,9 @@ struct ViewOptions {
   std::optional<std::string> screenshot;  ///< headless: a hidden window, this PNG after `frames`
   int frames = 60;                        ///< frames drawn before the screenshot (after loading)
   glm::ivec2 sizePx{1280, 720};
+  /// At most this many frames a second (0: as the display's vsync allows), to leave the
+  /// processor to haptic threads on the same small machine.
+  double maxFrameRateHz = 0.0;
   bool json = false;  ///< the summary as one JSON document
   /// The controller may end the run (a peer's, on its duration or a signal): the window
   /// then closes as if its user had closed it, instead of failing.

@@ -5,6 +5,7 @@
 // minutes for.
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 
 #include "support/cli_runner.h"
 #include "support/exclusive_section.h"
+#include "support/png_decode.h"
 #include "support/sanitizers.h"
 
 namespace voxhap::test {
@@ -23,15 +25,24 @@ TEST_F(DemoCommand, HelpSaysWhoDoesWhatAndWhatTheSummaryMeasures) {
   const CliRun r = voxhap({"demo", "--help"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   for (const char* text : {"share", "spare actuator", "type-2", "type-1", "--no-passivity", "came out",
-                           "voxhap extract", "Examples"}) {
+                           "voxhap extract", "--headless", "--screenshots", "xvfb-run", "Examples"}) {
     EXPECT_NE(r.out.find(text), std::string::npos) << text << "\n" << r.out;
   }
+}
+
+TEST_F(DemoCommand, PicturesOrNoneNotBoth) {
+  const CliRun r = voxhap({"demo", "--screenshots", "here", "--no-screenshots"});
+  EXPECT_EQ(r.exitCode, 2) << r.err;
 }
 
 TEST_F(DemoCommand, ThreePeersPlayTheSessionAndReportItWithoutOverlap) {
   if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
   const ExclusiveSection alone(kLandingGearSessionLock);
-  const CliRun r = voxhap({"demo", "--no-realtime", "--json"});
+  // under a virtual display when there is one to be had, so that it draws its pictures
+  const bool xvfb = std::filesystem::exists("/usr/bin/xvfb-run");
+  const CliRun r =
+      voxhap({"demo", "--no-realtime", "--headless", "--json", "--screenshots", "pictures"},
+             xvfb ? std::vector<std::string>{"/usr/bin/xvfb-run", "-a"} : std::vector<std::string>{});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
   ASSERT_TRUE(j.is_object()) << r.out;
@@ -61,6 +72,32 @@ TEST_F(DemoCommand, ThreePeersPlayTheSessionAndReportItWithoutOverlap) {
   // no two moving parts overlapped on any peer by more than a tenth of a voxel (2.5 mm)
   for (const nlohmann::json& o : j.at("exact_overlaps")) {
     EXPECT_LT(o.at("deepest_m").get<double>(), 0.00025) << o.dump();
+  }
+  const nlohmann::json& pictures = j.at("pictures");
+  if (xvfb) {
+    // at 1 s, 17 s and the end (and the widest divergence, if any), from one eye: the
+    // actuator moved between the first and the last, the static gear did not
+    ASSERT_GE(pictures.size(), 3u) << r.err;
+    const DecodedPng first = decodePng(dir_ / pictures[0].at("file").get<std::string>());
+    const DecodedPng last = decodePng(dir_ / pictures[2].at("file").get<std::string>());
+    ASSERT_EQ(first.width, 1280u);
+    ASSERT_EQ(first.height, 720u);
+    ASSERT_EQ(last.width, first.width);
+    ASSERT_EQ(last.height, first.height);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < first.rgb.size(); i += 3) {
+      if (first.rgb[i] != last.rgb[i] || first.rgb[i + 1] != last.rgb[i + 1] ||
+          first.rgb[i + 2] != last.rgb[i + 2])
+        ++differ;
+    }
+    const std::size_t pixels = first.rgb.size() / 3;
+    EXPECT_GT(differ, pixels / 200) << "the actuator did not move in the pictures";
+    EXPECT_LT(differ, pixels / 4) << "the eye or the gear changed between the pictures";
+    std::printf("[ figures  ] pictures: %zu of %zu pixels changed from the first to the last\n", differ,
+                pixels);
+  } else {
+    EXPECT_TRUE(pictures.empty());
+    EXPECT_NE(r.err.find("no pictures"), std::string::npos) << r.err;
   }
   std::printf("[ figures  ] the actuator %s; %zu samples in %.1f s\n",
               j.at("actuator_came_out").get<bool>() ? "came out" : "did not come out",

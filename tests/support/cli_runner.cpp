@@ -51,10 +51,15 @@ void CliTest::TearDown() {
   fs::remove_all(dir_);
 }
 
-CliRun CliTest::voxhap(const std::vector<std::string>& args) const {
-  std::string command = "cd " + shellQuote(dir_.string()) +
-                        " && VOXHAP_CACHE_DIR=" + shellQuote((dir_ / "cache").string()) + " " +
-                        shellQuote(VOXHAP_EXE);
+CliRun CliTest::voxhap(const std::vector<std::string>& args, const std::vector<std::string>& launcher) const {
+  std::string command =
+      "cd " + shellQuote(dir_.string()) + " && VOXHAP_CACHE_DIR=" + shellQuote((dir_ / "cache").string());
+  for (const std::string& a : launcher) {
+    command.push_back(' ');
+    command.append(shellQuote(a));
+  }
+  command.push_back(' ');
+  command.append(shellQuote(VOXHAP_EXE));
   for (const std::string& a : args) {
     command.push_back(' ');
     command.append(shellQuote(a));

@@ -30,7 +30,8 @@ protected:
   void TearDown() override;
 
   /// Runs voxhap with `args` in dir_, with VOXHAP_CACHE_DIR=dir_/cache; stdin is empty.
-  CliRun voxhap(const std::vector<std::string>& args) const;
+  /// `launcher`: a program and its arguments that run it (e.g. xvfb-run -a).
+  CliRun voxhap(const std::vector<std::string>& args, const std::vector<std::string>& launcher = {}) const;
 
   /// The path of a committed asset, e.g. asset("ball-and-socket.glb").
   static std::string asset(const std::string& name);
