@@ -55,6 +55,10 @@ Benchmark scalingBenchmark();
 /// Handle motion to pose at a front end, through a controller on loopback.
 Benchmark latencyBenchmark();
 
+/// A shared object's two instances through a simulated network: tracking error against
+/// delay with and without the passivity controller, stability after release, bandwidth.
+Benchmark sharingBenchmark();
+
 /// Time against error: gap and force direction over analytic scenes, voxel sizes, bit
 /// widths, geometrical awareness and coherence.
 Benchmark errorBenchmark();

@@ -48,6 +48,7 @@ TEST_F(BenchCommand, HelpListsEveryBenchmark) {
   EXPECT_NE(r.out.find("\n  scaling "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n  error "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n  latency "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n  sharing "), std::string::npos) << r.out;
 }
 
 TEST_F(BenchCommand, UnknownNameExitsTwoListingTheValidNames) {
@@ -280,6 +281,40 @@ TEST_F(BenchCommand, LatencyTimesEveryHandleMoveBackToTheClient) {
   EXPECT_LE(row.at("latency_p50_us").get<double>(), row.at("latency_max_us").get<double>());
   EXPECT_EQ(row.at("sched_fifo"), "no");
   EXPECT_EQ(voxhap({"bench", "latency", "--samples", "3"}).exitCode, 2);
+}
+
+TEST_F(BenchCommand, SharingFollowsWithoutDelayNotAtASecondAndStaysStable) {
+  const CliRun run = voxhap({"bench", "sharing", "--quick", "--json"});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(run.out);
+  EXPECT_EQ(j.at("benchmark"), "sharing");
+  std::size_t delayRows = 0, bandwidthRows = 0;
+  for (const nlohmann::ordered_json& row : j.at("rows")) {
+    SCOPED_TRACE(row.dump());
+    const double oneWayMs = row.at("one_way_ms").get<double>();
+    const double gain = row.at("gain").get<double>();
+    if (row.at("sweep") == "delay") {
+      ++delayRows;
+      // a 10 mm drag at 0.2 Hz: followed closely over a fast link (a spring of ω_n 8 rad/s
+      // behind states 30-80 ms old), not at all once the mean delay passes 1 s (k(τ) = 0)
+      if (oneWayMs == 0.0) {
+        EXPECT_GT(gain, 0.8);
+        EXPECT_LT(row.at("tracking_rms_m").get<double>(), 0.004);
+      }
+      if (oneWayMs == 1000.0) {
+        EXPECT_LT(gain, 0.01);
+      }
+      // let go, the pair's relative energy does not grow, with the controller or without
+      EXPECT_EQ(row.at("stable"), "yes");
+    } else {
+      ++bandwidthRows;
+      EXPECT_EQ(row.at("sweep"), "bandwidth");
+      EXPECT_GE(gain, 0.0);
+    }
+  }
+  EXPECT_EQ(delayRows, 6u);  // 0, 300 and 1000 ms, each with the controller and without
+  EXPECT_EQ(bandwidthRows, 6u);
+  EXPECT_EQ(voxhap({"bench", "sharing", "--loss", "1"}).exitCode, 2);
 }
 
 }  // namespace
