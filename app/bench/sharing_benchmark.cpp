@@ -51,12 +51,13 @@ struct Link {
 struct Run {
   double trackingRmsM = 0.0;  ///< |held − unheld| while the handle moves
   double maxApartM = 0.0;
-  double gain = 0.0;  ///< the unheld instance's amplitude at the drive frequency over the held one's
+  double gain = 0.0;            ///< unheld amplitude over held, at the drive frequency
   double releasedApartM = 0.0;  ///< at the end, after both are let go
-  double releasedEnergyJ =
-      0.0;                    ///< the pair's kinetic energy in their frame's first second after the release
-  double laterEnergyJ = 0.0;  ///< ... in the last second
-  double dissipatedJ = 0.0;   ///< by both passivity controllers
+  /// The pair's kinetic energy relative to its common motion, the most in the first
+  /// second after the release and in the last.
+  double releasedEnergyJ = 0.0;
+  double laterEnergyJ = 0.0;
+  double dissipatedJ = 0.0;  ///< by both passivity controllers
 };
 
 /// A deterministic uniform number in [0, 1) (xorshift64*), the same on every machine.
@@ -208,7 +209,7 @@ BenchTable runSharingBench(const SharingBenchArgs& args, Console& console) {
   const auto add = [&table](const std::string& sweep, const Link& link, double frequencyHz, const Run& r) {
     const std::size_t row = table.addRow();
     table.set(row, "sweep", sweep);
-    table.set(row, "one_way_ms", 1e3 * link.delayS);
+    table.set(row, "one_way_ms", std::round(1e6 * link.delayS) / 1e3);  // whole µs
     table.set(row, "passivity", std::string(link.passivity ? "on" : "off"));
     table.set(row, "frequency_hz", frequencyHz);
     table.set(row, "tracking_rms_m", r.trackingRmsM);

@@ -102,6 +102,10 @@ TEST_F(DemoCommand, ThreePeersPlayTheSessionAndReportItWithoutOverlap) {
   std::printf("[ figures  ] the actuator %s; %zu samples in %.1f s\n",
               j.at("actuator_came_out").get<bool>() ? "came out" : "did not come out",
               j.at("samples").get<std::size_t>(), j.at("wall_s").get<double>());
+  // the main job's point: with the actuator's own point offset (-0.5 mm, landing_gear_parts.h)
+  // it came out in 15 runs of 15 by hand, on a loaded machine too; before it, it
+  // jammed in its clevis jaws in some
+  EXPECT_TRUE(j.at("actuator_came_out").get<bool>()) << r.out;
 }
 
 }  // namespace
