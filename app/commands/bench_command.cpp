@@ -20,8 +20,8 @@ namespace fs = std::filesystem;
 
 /// Every benchmark `voxhap bench` offers, in the order `--help` lists them.
 std::vector<Benchmark> benchmarks() {
-  return {table1Benchmark(),  rotationBenchmark(), extractionBenchmark(),
-          scalingBenchmark(), errorBenchmark(),    latencyBenchmark(), sharingBenchmark()};
+  return {table1Benchmark(), rotationBenchmark(), extractionBenchmark(), scalingBenchmark(),
+          errorBenchmark(),  latencyBenchmark(),  sharingBenchmark()};
 }
 
 /// The output options every benchmark takes.
