@@ -23,6 +23,7 @@
 #include "haptics/dynamics/mass_properties.h"
 #include "haptics/geometry/mesh_builder.h"
 #include "haptics/runtime/shared_object_port.h"
+#include "net/peer/impairment.h"
 
 namespace voxhap::cli {
 namespace {
@@ -60,20 +61,6 @@ struct Run {
   double dissipatedJ = 0.0;  ///< by both passivity controllers
 };
 
-/// A deterministic uniform number in [0, 1) (xorshift64*), the same on every machine.
-class Uniform {
-public:
-  double next() {
-    state_ ^= state_ >> 12;
-    state_ ^= state_ << 25;
-    state_ ^= state_ >> 27;
-    return static_cast<double>((state_ * 2685821657736338717ULL) >> 11) * 0x1.0p-53;
-  }
-
-private:
-  std::uint64_t state_ = 0x9E3779B97F4A7C15ULL;
-};
-
 /// A state in flight to the other instance.
 struct InFlight {
   std::int64_t arrivalUs = 0;
@@ -100,7 +87,13 @@ Run simulate(const RigidBodyModel& model, const Link& link, double frequencyHz, 
   Instance held{restingState(model), {}, {}};
   Instance unheld{restingState(model), {}, {}};
   const glm::dvec3 restCom = held.body.comWorld;
-  Uniform random;
+  // the relay's model of the path (net/peer/impairment.h): a delay drawn uniformly from
+  // [delay, delay + jitter], a share lost; seeded, so the same fates on every machine
+  net::Impairment path({.delayS = link.delayS + 0.5 * link.jitterS,
+                        .jitterS = 0.5 * link.jitterS,
+                        .lossRate = link.lossShare,
+                        .duplicateRate = 0.0,
+                        .seed = 1});
   Run run;
   double squaredSum = 0.0;
   std::size_t drivenFrames = 0;
@@ -119,10 +112,12 @@ Run simulate(const RigidBodyModel& model, const Link& link, double frequencyHz, 
     // the network: states sent every 10 ms, taken when they arrive
     for (auto [from, to, peer] :
          {std::tuple{&held, &unheld, kHeldPeer}, std::tuple{&unheld, &held, kUnheldPeer}}) {
-      if (nowUs % kStreamUs == 0 && random.next() >= link.lossShare) {
-        const double delayS = link.delayS + link.jitterS * random.next();
-        to->arriving.push_back(
-            {nowUs + static_cast<std::int64_t>(delayS * 1e6), {nowUs, from->body}, from->port.last().inJ});
+      if (nowUs % kStreamUs == 0) {
+        const net::DatagramFate fate = path.next();
+        if (fate.copies > 0)
+          to->arriving.push_back({nowUs + static_cast<std::int64_t>(fate.delayS[0] * 1e6),
+                                  {nowUs, from->body},
+                                  from->port.last().inJ});
       }
       std::erase_if(to->arriving, [&](const InFlight& f) {
         if (f.arrivalUs > nowUs) return false;

@@ -280,11 +280,9 @@ void PeerSession::onState(PeerId from, const DatagramHeader& header, const pb::P
   m->holding = {state.holding().begin(), state.holding().end()};
   m->shares.clear();
   m->divergent.clear();
-  m->instances.clear();
   for (const pb::Share& share : state.shares()) {
-    m->shares.insert(share.body().object());
+    m->shares[share.body().object()] = fromBody(share.body());
     if (share.divergent()) m->divergent.insert(share.body().object());
-    m->instances[share.body().object()] = fromBody(share.body());
   }
   for (const pb::Member& gossip : state.members()) {
     if (gossip.peer() == self_ || gossip.peer() == kNoPeer || members_.count(gossip.peer())) continue;
@@ -501,8 +499,9 @@ void PeerSession::share(std::uint32_t object, SharedBodyFn onShared) {
 std::vector<SharerView> PeerSession::sharers(std::uint32_t object) const {
   std::vector<SharerView> out;
   for (const auto& [id, m] : members_) {
-    if (m.shares.count(object))
-      out.push_back({id, m.delay.oneWayMs(), m.divergent.count(object) > 0, m.instances.at(object)});
+    const auto instance = m.shares.find(object);
+    if (instance != m.shares.end())
+      out.push_back({id, m.delay.oneWayMs(), m.divergent.count(object) > 0, instance->second});
   }
   return out;
 }

@@ -167,9 +167,9 @@ private:
     asio::ip::udp::endpoint endpoint;
     std::string name;
     Clock::time_point heard{};
-    std::set<std::uint32_t> owns, wants, holding, shares, divergent;
-    std::map<std::uint32_t, RigidBodyState> instances;  ///< of what it shares, as last heard
-    std::uint32_t theirSentUs = 0;                      ///< header send time of their newest datagram
+    std::set<std::uint32_t> owns, wants, holding, divergent;
+    std::map<std::uint32_t, RigidBodyState> shares;  ///< what it shares: its instance, as last heard
+    std::uint32_t theirSentUs = 0;                   ///< header send time of their newest datagram
     Clock::time_point theirSentAt{};
     bool heardDirectly = false;
     OneWayDelay delay;
