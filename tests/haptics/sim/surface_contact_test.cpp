@@ -159,6 +159,32 @@ TEST(SurfaceContact, TheSeatedBallTurnsInItsSocket) {
   EXPECT_NEAR(turnedRad, kTurnRad, 0.1);
 }
 
+// The seated ball pressed 1 mm down into its socket by its handle: rows with limits of
+// their own hold it while the coupling pulls far harder than the contacts' springs push.
+// The contact force reported must still balance the pull and the weight at rest, the
+// limits' share included (the HUD showed the springs' share alone, an eighth of the pull).
+TEST(SurfaceContact, TheContactForceAtRestBalancesThePullAndTheWeight) {
+  const Scene scene = makeBallAndSocket();
+  SceneModelOptions options = test::ampleCapacityOptions();
+  options.staticVoxelSizeM = 0.001;
+  options.pointSpacingM = 0.001;
+  options.sim.gravityWorld = kGravity;
+  options.sim.surfaceContact = true;
+  options.sim.forceLayer = kSurfaceContactForceLayer;
+  const SimModel model = buildSceneModel(scene, {"ball"}, options);
+  LocalSimulation sim(model);
+  HandleInput handle;
+  handle.poseWorld.position = glm::dvec3(0.0, 0.0, -0.001);
+  for (int frame = 0; frame < 700; ++frame) sim.step({&handle, 1});
+  const ObjectFrame& f = sim.object(0);
+  const glm::dvec3 weight = model.objects[0].body.massKg * kGravity;
+  EXPECT_GT(sim.outputs.depthLimit.rowLimits, 0u);
+  EXPECT_GT(glm::length(f.feedback.forceWorld), 2.0 * glm::length(weight));
+  // the device feels the opposite of the coupling's pull on the ball
+  EXPECT_LT(glm::length(f.contactForceWorld + weight - f.feedback.forceWorld),
+            0.1 * glm::length(f.feedback.forceWorld));
+}
+
 TEST(SurfaceContact, PointsMoreThanTwoVoxelsApartAreRefused) {
   const Scene scene =
       onPlate("ball", [](TriangleMesh& m) { appendGeodesicSphere(m, test::at(0, 0, 0.011), 0.01, 3); });
