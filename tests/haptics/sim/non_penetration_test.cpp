@@ -426,6 +426,26 @@ TEST_P(NonPenetration, TwoMovingPartsPressedTogetherByTheirHandles) {
   }
 }
 
+TEST_P(NonPenetration, ALocalPartPressedByItsHandleIntoAStillRemoteOne) {
+  for (const double voxelM : kVoxelsM) {
+    for (const bool leftIsRemote : {false, true}) {
+      // one box is a remote peer's, held still by its stream; the other's user drives its
+      // handle 20 mm into it: only the local part may give way, and cannot
+      const Pose still{};
+      const double intoM = leftIsRemote ? -0.02 : 0.02;
+      Case c{twoBoxes(),
+             {"left", "right"},
+             {ramp(leftIsRemote ? still : moved(intoM, 0.0, 0.0), 0.2),
+              ramp(leftIsRemote ? moved(intoM, 0.0, 0.0) : still, 0.2)},
+             voxelM};
+      c.remote = {leftIsRemote, !leftIsRemote};
+      expectWithinBound(std::string("a local part pressed into a still remote one (") +
+                            (leftIsRemote ? "left" : "right") + " remote)",
+                        c);
+    }
+  }
+}
+
 /// The plate, a local 20 × 20 × 10 mm box 2.5 mm over it and a remote peer's 10 mm box
 /// 2.5 mm over that, 3 mm off its centre and turned 0.1 rad.
 Scene remoteBoxOverLocalBox() {
