@@ -117,7 +117,6 @@ SceneModelOptions sceneModelOptions(const SimOptions& o, Console& console, doubl
     if (o.pointLayer.value_or(0) > 0)
       throw UsageError("--point-layer takes the points off the surface, where --surface-contact needs them");
     options.sim.surfaceContact = true;
-    options.sim.forceLayer = kSurfaceContactForceLayer;
   }
   options.sim.coherence.enabled = !o.bruteForce;
   options.sim.coherence.pointDrifting = !o.noDrifting;

@@ -333,9 +333,9 @@ BenchTable runError(const ErrorArgs& args, Console& console) {
             options.pointDisplacementM = es->displaceHalfVoxel ? -0.5 * voxelM : 0.0;
             options.sim.gravityWorld = kGravity;
             options.sim.geometricalAwareness = aware;
-            options.sim.forceLayer = std::min(kDefaultForceLayer, VoxelEncoding::forBits(bits).maxValue());
             options.sim.surfaceContact = surface;
-            if (surface) options.sim.forceLayer = kSurfaceContactForceLayer;
+            if (!surface)
+              options.sim.forceLayer = std::min(kDefaultForceLayer, VoxelEncoding::forBits(bits).maxValue());
             options.sim.coherence.capacityTests = capacity;
             useVoxelCache(options, cache, console);
             SimModel model = buildSceneModel(scene, {es->moving}, options);

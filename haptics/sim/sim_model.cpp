@@ -36,8 +36,9 @@ double contactInertiaKg(const MovingObjectModel& object) {
 
 ContactParams pairParams(const SimModel& model, const PairModel& pair, const SimOptions& options) {
   const Voxmap& voxmap = model.voxmapOf(pair);
-  if (options.forceLayer < 1 || options.forceLayer > voxmap.encoding().maxValue()) {
-    throw Error("force layer " + std::to_string(options.forceLayer) + " is outside the voxmap's values 1 … " +
+  const std::uint8_t forceLayer = options.forceLayerValue();
+  if (forceLayer < 1 || forceLayer > voxmap.encoding().maxValue()) {
+    throw Error("force layer " + std::to_string(forceLayer) + " is outside the voxmap's values 1 … " +
                 std::to_string(voxmap.encoding().maxValue()));
   }
   double inertia = contactInertiaKg(model.objects[static_cast<std::size_t>(pair.shellObject)]);
@@ -46,14 +47,14 @@ ContactParams pairParams(const SimModel& model, const PairModel& pair, const Sim
   }
   const double omega = kContactFrequencyTimesDt / options.dtS;
   ContactParams params;
-  params.forceLayer = options.forceLayer;
+  params.forceLayer = forceLayer;
   params.geometricalAwareness = options.geometricalAwareness;
   params.preContactDamping = options.preContactDamping;
   if (options.surfaceContact && voxmap.hasSurfacePlanes()) {
     const Pointshell& shell = model.objects[static_cast<std::size_t>(pair.shellObject)].shell;
     const double voxelM = voxmap.grid().voxelSizeM;
-    if (options.forceLayer < kSurfaceContactForceLayer) {
-      throw Error("force layer " + std::to_string(options.forceLayer) +
+    if (forceLayer < kSurfaceContactForceLayer) {
+      throw Error("force layer " + std::to_string(forceLayer) +
                   " does not reach the points that surface contact pushes (at least " +
                   std::to_string(kSurfaceContactForceLayer) + ")");
     }

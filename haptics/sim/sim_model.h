@@ -129,7 +129,8 @@ struct SimModel {
 struct SimOptions {
   double dtS = 1e-3;
   glm::dvec3 gravityWorld{0.0};
-  std::uint8_t forceLayer = kDefaultForceLayer;
+  /// The force layer's voxel value; none: the contact's own (forceLayerValue()).
+  std::optional<std::uint8_t> forceLayer;
   bool geometricalAwareness = true;
   bool preContactDamping = false;  ///< see ContactParams
   /// Contact by surface planes where a pair's voxmap has them (ContactParams::
@@ -138,6 +139,12 @@ struct SimOptions {
   bool surfaceContact = false;
   DeviceLimits deviceLimits;
   CoherenceOptions coherence;
+
+  /// forceLayer, else kSurfaceContactForceLayer with surface contact and the paper's
+  /// kDefaultForceLayer without.
+  std::uint8_t forceLayerValue() const noexcept {
+    return forceLayer.value_or(surfaceContact ? kSurfaceContactForceLayer : kDefaultForceLayer);
+  }
 };
 
 /// Completes `objects` (rigid body, pointshell and voxmap set by the caller; `coupled`

@@ -26,7 +26,6 @@ void expectTwoBoxesAllocateNothing(bool surfaceContact) {
   if (surfaceContact) {
     options.pointSpacingM = 0.00025;
     options.sim.surfaceContact = true;
-    options.sim.forceLayer = kSurfaceContactForceLayer;
   }
   const SimModel model = buildSceneModel(scene, {"a", "b"}, options);
   ASSERT_EQ(model.pairs.front().params.surfaceContactM > 0.0, surfaceContact);

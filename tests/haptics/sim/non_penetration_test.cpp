@@ -93,10 +93,7 @@ Outcome run(const std::string& name, const Case& c) {
   options.staticVoxelSizeM = c.voxelM;
   options.pointSpacingM = c.voxelM;
   options.pointDisplacementM = c.pointOffsetM;
-  if (c.surfaceContact) {
-    options.sim.surfaceContact = true;
-    options.sim.forceLayer = kSurfaceContactForceLayer;
-  }
+  options.sim.surfaceContact = c.surfaceContact;
   const SimModel model = buildSceneModel(c.scene, c.moving, options);
   LocalSimulation sim(model);
   SimState& state = sim.state;

@@ -28,7 +28,6 @@ SimModel surfaceModel(const Scene& scene, const std::vector<std::string>& moving
   options.pointSpacingM = 0.5 * voxelM;
   options.sim.gravityWorld = kGravity;
   options.sim.surfaceContact = surface;
-  if (surface) options.sim.forceLayer = kSurfaceContactForceLayer;
   SimModel model = buildSceneModel(scene, moving, options);
   for (MovingObjectModel& object : model.objects) object.coupled = false;
   return model;
@@ -146,7 +145,6 @@ TEST(SurfaceContact, TheSeatedBallTurnsInItsSocket) {
   options.pointSpacingM = 0.001;
   options.pointDisplacementM = -0.0005;
   options.sim.surfaceContact = true;
-  options.sim.forceLayer = kSurfaceContactForceLayer;
   const SimModel model = buildSceneModel(scene, {"ball"}, options);
   LocalSimulation sim(model);
   constexpr double kTurnRad = 0.5 * M_PI;
@@ -170,7 +168,6 @@ TEST(SurfaceContact, TheContactForceAtRestBalancesThePullAndTheWeight) {
   options.pointSpacingM = 0.001;
   options.sim.gravityWorld = kGravity;
   options.sim.surfaceContact = true;
-  options.sim.forceLayer = kSurfaceContactForceLayer;
   const SimModel model = buildSceneModel(scene, {"ball"}, options);
   LocalSimulation sim(model);
   HandleInput handle;
@@ -192,7 +189,6 @@ TEST(SurfaceContact, PointsMoreThanTwoVoxelsApartAreRefused) {
   options.staticVoxelSizeM = 0.001;
   options.pointSpacingM = 0.0025;
   options.sim.surfaceContact = true;
-  options.sim.forceLayer = kSurfaceContactForceLayer;
   EXPECT_THROW(buildSceneModel(scene, {"ball"}, options), Error);
   options.pointSpacingM = 0.001;
   options.sim.forceLayer = distanceValue(0);
@@ -206,6 +202,8 @@ TEST(SurfaceContact, AForceLayerThatDoesNotReachItsPointsIsRefusedWhileRunning) 
     const SimModel model = surfaceModel(scene, {"ball"}, 0.001, surface);
     LocalSimulation sim(model);
     EXPECT_EQ(model.minForceLayer(), surface ? kSurfaceContactForceLayer : 1);
+    // no force layer asked: each contact's own
+    EXPECT_EQ(sim.state.forceLayer, surface ? kSurfaceContactForceLayer : kDefaultForceLayer);
     EXPECT_EQ(setForceLayer(model, sim.state, sim.workspace, distanceValue(0)), !surface);
     EXPECT_TRUE(setForceLayer(model, sim.state, sim.workspace, kSurfaceContactForceLayer));
   }
