@@ -335,9 +335,10 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
       limitDepths(model.objects, ws.beforeStep, state.bodies, ws.depthScratch, rowCount, model.dtS);
   ws.counters.depthLimitedFrames += outputs.depthLimit.binding > 0 ? 1 : 0;
   for (std::size_t i = 0; i < n; ++i) {
-    // what the limits refused (a pair's limit, a row's own or the last pass's scale; zero
-    // where none bound) is the contacts' push beyond their springs
+    // what the limits refused (a pair's limit, a row's own or the last pass's scale) is
+    // the contacts' push beyond their springs
     const DepthLimitScratch::Delta& refused = ws.depthScratch.deltas[i];
+    if (refused.refusedLinear == glm::dvec3(0.0) && refused.refusedAngular == glm::dvec3(0.0)) continue;
     const RigidBodyModel& body = model.objects[i].body;
     const double perH2 = 1.0 / (model.dtS * model.dtS);
     ObjectFrame& f = outputs.objects[i];

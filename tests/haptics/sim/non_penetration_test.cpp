@@ -428,12 +428,11 @@ TEST_P(NonPenetration, ALocalPartPressedByItsHandleIntoAStillRemoteOne) {
     for (const bool leftIsRemote : {false, true}) {
       // one box is a remote peer's, held still by its stream; the other's user drives its
       // handle 20 mm into it: only the local part may give way, and cannot
-      const Pose still{};
-      const double intoM = leftIsRemote ? -0.02 : 0.02;
+      const HandleFn held = [](double) { return Pose{}; };
+      const HandleFn pressed = ramp(moved(leftIsRemote ? -0.02 : 0.02, 0.0, 0.0), 0.2);
       Case c{twoBoxes(),
              {"left", "right"},
-             {ramp(leftIsRemote ? still : moved(intoM, 0.0, 0.0), 0.2),
-              ramp(leftIsRemote ? moved(intoM, 0.0, 0.0) : still, 0.2)},
+             {leftIsRemote ? held : pressed, leftIsRemote ? pressed : held},
              voxelM};
       c.remote = {leftIsRemote, !leftIsRemote};
       expectWithinBound(std::string("a local part pressed into a still remote one (") +

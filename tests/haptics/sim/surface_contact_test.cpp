@@ -33,6 +33,15 @@ SimModel surfaceModel(const Scene& scene, const std::vector<std::string>& moving
   return model;
 }
 
+/// The built-in ball in its socket, 1 mm voxels and points, contact by surface planes.
+SceneModelOptions seatedBallOptions() {
+  SceneModelOptions options = test::ampleCapacityOptions();
+  options.staticVoxelSizeM = 0.001;
+  options.pointSpacingM = 0.001;
+  options.sim.surfaceContact = true;
+  return options;
+}
+
 /// The exact gap under a convex polyhedron over the plane z = `floorZ` after `frames`
 /// frames at rest, and the least it reached on the way.
 struct Rest {
@@ -140,11 +149,8 @@ TEST(SurfaceContact, CrossedRodsRestEdgeOnEdgeWithinAQuarterVoxelWithoutCrossing
 // (surface_distance.h) give the rim its distance.
 TEST(SurfaceContact, TheSeatedBallTurnsInItsSocket) {
   const Scene scene = makeBallAndSocket();
-  SceneModelOptions options = test::ampleCapacityOptions();
-  options.staticVoxelSizeM = 0.001;
-  options.pointSpacingM = 0.001;
+  SceneModelOptions options = seatedBallOptions();
   options.pointDisplacementM = -0.0005;
-  options.sim.surfaceContact = true;
   const SimModel model = buildSceneModel(scene, {"ball"}, options);
   LocalSimulation sim(model);
   constexpr double kTurnRad = 0.5 * M_PI;
@@ -163,11 +169,8 @@ TEST(SurfaceContact, TheSeatedBallTurnsInItsSocket) {
 // limits' share included (the HUD showed the springs' share alone, an eighth of the pull).
 TEST(SurfaceContact, TheContactForceAtRestBalancesThePullAndTheWeight) {
   const Scene scene = makeBallAndSocket();
-  SceneModelOptions options = test::ampleCapacityOptions();
-  options.staticVoxelSizeM = 0.001;
-  options.pointSpacingM = 0.001;
+  SceneModelOptions options = seatedBallOptions();
   options.sim.gravityWorld = kGravity;
-  options.sim.surfaceContact = true;
   const SimModel model = buildSceneModel(scene, {"ball"}, options);
   LocalSimulation sim(model);
   HandleInput handle;
