@@ -242,6 +242,7 @@ void HapticLoop::run() noexcept {
     compute_.record(monotonicTime().nowNs() - tick.beganNs);
     publish(status, frame);
     if (status & kFrameStopped) break;
+    if (realtime_.fifo.ok) yieldToEqualPriority();
   }
 }
 

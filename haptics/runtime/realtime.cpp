@@ -28,4 +28,8 @@ RealtimeStatus requestRealtime(int fifoPriority) {
   return status;
 }
 
+void yieldToEqualPriority() noexcept {
+  sched_yield();
+}
+
 }  // namespace voxhap

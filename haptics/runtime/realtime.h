@@ -29,4 +29,12 @@ struct RealtimeStatus {
 /// only: allocates the messages; never throws for a refusal.
 RealtimeStatus requestRealtime(int fifoPriority);
 
+/// Lets the other runnable threads of the caller's SCHED_FIFO priority run before it goes
+/// on (sched_yield); returns at once when none waits. A SCHED_FIFO thread is never
+/// preempted by one of its own priority: a haptic thread whose frames overrun never sleeps,
+/// and without this would take a core from every other such thread for as long as it
+/// overruns (three peers in one process on two cores: one peer stood still for 12.5 s).
+/// Never blocks; the haptic thread calls it once a frame.
+void yieldToEqualPriority() noexcept;
+
 }  // namespace voxhap

@@ -4,9 +4,11 @@
 
 #include "app/controller/haptic_loop.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -256,6 +258,71 @@ TEST_F(HapticLoopTest, StopRetiresTheDevicesStillHeldAndKeepsItsStatistics) {
   EXPECT_GT(loop_->periodStats().count(), 200u);
   EXPECT_EQ(loop_->periodStats().count() + 1, loop_->computeStats().count());
   EXPECT_FALSE(loop_->realtime().fifo.ok);  // not asked for
+}
+
+// a device whose first frames each take longer than the period, so that its loop never
+// sleeps until it has done them; when it has, it notes how far every other such device got
+class OverrunningDevice final : public HapticDevice {
+public:
+  OverrunningDevice(const DeviceLimits& limits, const std::vector<std::unique_ptr<OverrunningDevice>>& all)
+      : limits_(limits), all_(all) {}
+  Pose handlePose(double) noexcept override {
+    if (frames.load() < kOverrunFrames) {
+      const auto until = std::chrono::steady_clock::now() + 1500us;
+      while (std::chrono::steady_clock::now() < until) {
+      }
+      if (frames.fetch_add(1) + 1 == kOverrunFrames) {
+        for (std::size_t i = 0; i < all_.size(); ++i) othersWhenDone[i] = all_[i]->frames.load();
+      }
+    }
+    return {};
+  }
+  HandleVelocity handleVelocity(double) noexcept override { return {}; }
+  void setFeedback(const CouplingWrench&) noexcept override {}
+  const DeviceLimits& limits() const noexcept override { return limits_; }
+
+  static constexpr int kOverrunFrames = 300;
+  std::atomic<int> frames{0};
+  std::vector<int> othersWhenDone;  ///< one per device, sized before the grab; written once by its loop
+
+private:
+  DeviceLimits limits_;
+  const std::vector<std::unique_ptr<OverrunningDevice>>& all_;
+};
+
+// Under SCHED_FIFO a thread is never preempted by one of its own priority: loops whose
+// frames all overrun never sleep, and with more of them than cores one would get no frame
+// at all until the others stopped overrunning (one peer of `voxhap demo` stood still for
+// 12.5 s). Each loop yields once a frame, so all of them go on together.
+TEST_F(HapticLoopTest, LoopsThatOverrunUnderFifoShareTheCores) {
+  loop_->stop();
+  const std::size_t count = std::max(2u, std::thread::hardware_concurrency()) + 1;
+  std::vector<std::unique_ptr<OverrunningDevice>> devices;
+  for (std::size_t i = 0; i < count; ++i)
+    devices.push_back(std::make_unique<OverrunningDevice>(model_.deviceLimits, devices));
+  for (auto& d : devices) d->othersWhenDone.resize(count, -1);
+  std::vector<std::unique_ptr<HapticLoop>> loops;
+  for (std::size_t i = 0; i < count; ++i) {
+    loops.push_back(std::make_unique<HapticLoop>(model_, makeSimState(model_), nullptr, HapticLoopOptions{}));
+    loops.back()->start();
+    if (!loops.back()->realtime().fifo.ok) {
+      GTEST_SKIP() << "SCHED_FIFO refused here: " << loops.back()->realtime().fifo.error;
+    }
+  }
+  for (std::size_t i = 0; i < count; ++i)
+    ASSERT_TRUE(loops[i]->post({LoopCommand::Kind::Grab, 0, devices[i].get(), 0, {}}));
+  const auto giveUp = std::chrono::steady_clock::now() + 30s;
+  const auto allDone = [&] {
+    return std::all_of(devices.begin(), devices.end(),
+                       [](const auto& d) { return d->frames.load() >= OverrunningDevice::kOverrunFrames; });
+  };
+  while (!allDone() && std::chrono::steady_clock::now() < giveUp) std::this_thread::sleep_for(10ms);
+  for (auto& loop : loops) loop->stop();
+  ASSERT_TRUE(allDone());
+  // when any loop had done its overrunning frames, every other had done a third of its own
+  for (const auto& d : devices) {
+    for (const int others : d->othersWhenDone) EXPECT_GE(others, OverrunningDevice::kOverrunFrames / 3);
+  }
 }
 
 TEST_F(HapticLoopTest, AFullQueueRefusesCommandsWithoutBlocking) {
