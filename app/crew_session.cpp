@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -36,10 +37,11 @@ pb::FrameUpdate newest(CrewPeer& peer, const CrewUser& user) {
   return *u;
 }
 
-/// Whether, as `peers` show it, every user's part is where that user needs it: a shared
-/// part shared by all its users, an owned one owned.
-bool everyPartReady(std::vector<std::unique_ptr<CrewPeer>>& peers, const std::vector<CrewUser>& users,
-                    const std::vector<std::string>& objects) {
+/// What, as `peers` show it, keeps a user's part from where that user needs it (a shared
+/// part shared by all its users, an owned one owned); empty when every part is ready.
+std::string partsNotReady(std::vector<std::unique_ptr<CrewPeer>>& peers, const std::vector<CrewUser>& users,
+                          const std::vector<std::string>& objects) {
+  std::string why;
   for (std::size_t p = 0; p < peers.size(); ++p) {
     const pb::FrameUpdate u = newest(*peers[p], users[p]);
     for (const CrewUser& user : users) {
@@ -48,10 +50,24 @@ bool everyPartReady(std::vector<std::unique_ptr<CrewPeer>>& peers, const std::ve
       const auto sharers = std::count_if(users.begin(), users.end(), [&](const CrewUser& other) {
         return other.share && other.object == user.object;
       });
-      if (user.share ? o.sharer_peers_size() != sharers : o.owner_peer() == 0) return false;
+      if (user.share && o.sharer_peers_size() != sharers) {
+        why += "\n  on " + users[p].name + "'s peer '" + user.object + "' has " +
+               std::to_string(o.sharer_peers_size()) + " sharer(s), not " + std::to_string(sharers);
+      } else if (!user.share && o.owner_peer() == 0) {
+        why += "\n  on " + users[p].name + "'s peer '" + user.object + "' is nobody's";
+      }
     }
   }
-  return true;
+  return why;
+}
+
+/// The last `lines` lines of `text`.
+std::string tail(const std::string& text, std::size_t lines) {
+  std::size_t from = text.size();
+  for (std::size_t n = 0; from > 0 && n <= lines;) {
+    if (text[--from] == '\n') ++n;
+  }
+  return text.substr(from == 0 ? 0 : from + 1);
 }
 
 }  // namespace
@@ -133,8 +149,17 @@ CrewSessionResult runCrewSession(const CrewSessionOptions& options, Console& con
 
   console.info("waiting until every user's part is theirs");
   const auto settleBy = Clock::now() + std::chrono::duration<double>(options.patienceS);
-  while (!everyPartReady(peers, options.users, result.objects)) {
-    if (Clock::now() > settleBy) throw Error("the parts were not every user's within the patience");
+  for (std::string why; !(why = partsNotReady(peers, options.users, result.objects)).empty();) {
+    if (Clock::now() > settleBy) {
+      std::string logs;
+      for (std::size_t k = 0; k < peers.size(); ++k) {
+        peers[k]->client.reset();
+        peers[k]->controller.reset();  // its threads end: its log is this thread's to read
+        logs += "\n" + options.users[k].name + "'s peer, last lines:\n" + tail(peers[k]->log.str(), 20);
+      }
+      throw Error("the parts were not every user's within the patience (" +
+                  std::to_string(std::lround(options.patienceS)) + " s):" + why + logs);
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
 
