@@ -230,16 +230,21 @@ int runDemo(const DemoArgs& args, const CommandContext& c) {
     for (std::size_t b = a + 1; b < bodies.size(); ++b)
       pairs.push_back({a, b, std::make_unique<ExactPenetration>(bodies[a], bodies[b], probeSpacingM)});
   }
-  for (std::size_t n = 0; n < r.samples.size(); n += 2) {
-    const CrewSample& s = r.samples[n];
-    for (PairFigures& p : pairs) {
-      const PenetrationSample m = p.exact->measure(s.poses[p.a], s.poses[p.b], false);
-      if (m.depthM <= p.deepestM) continue;
-      p.deepestM = m.depthM;
-      p.peer = s.peer;
-      p.atS = s.playedS;
-    }
+  // a thread for each pair: they share nothing
+  std::vector<std::future<void>> measuring;
+  for (PairFigures& p : pairs) {
+    measuring.push_back(std::async(std::launch::async, [&r, &p] {
+      for (std::size_t n = 0; n < r.samples.size(); n += 2) {
+        const CrewSample& s = r.samples[n];
+        const PenetrationSample m = p.exact->measure(s.poses[p.a], s.poses[p.b], false);
+        if (m.depthM <= p.deepestM) continue;
+        p.deepestM = m.depthM;
+        p.peer = s.peer;
+        p.atS = s.playedS;
+      }
+    }));
   }
+  for (std::future<void>& f : measuring) f.get();
 
   std::vector<ShotFigures> shots;
   if (!args.noScreenshots) {
