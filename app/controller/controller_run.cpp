@@ -417,6 +417,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
                                 {"frames", last.frame},
                                 {"simulated_s", last.timeS},
                                 {"sched_fifo", fifo},
+                                {"sched_fifo_given_up", last.fifoGivenUp},
                                 {"memory_locked", locked},
                                 {"period", summaryJson(period)},
                                 {"compute", summaryJson(compute)},
@@ -440,8 +441,9 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
       << last.timeS << " s simulated)\n";
   printSummary(out, "period", period);
   printSummary(out, "compute", compute);
-  out << "re-syncs         " << last.resyncs << " (" << last.skippedPeriods << " periods skipped)\n"
-      << "missed deadlines " << last.missedDeadlines << "\nclients          " << c.connections << " ("
+  out << "re-syncs         " << last.resyncs << " (" << last.skippedPeriods << " periods skipped)\n";
+  if (fifo) out << "SCHED_FIFO       given up " << last.fifoGivenUp << " times, the frames overrunning\n";
+  out << "missed deadlines " << last.missedDeadlines << "\nclients          " << c.connections << " ("
       << c.violations << " closed for protocol violations, " << c.refused << " refused), " << c.requests
       << " requests\n";
   if (peer) {

@@ -556,6 +556,7 @@ void ControllerService::statistics(pb::Statistics& out) const {
   out.set_resyncs(s.resyncs);
   out.set_realtime(loop.realtime().fifo.ok);
   out.set_memory_locked(loop.realtime().memoryLock.ok);
+  out.set_fifo_given_up(s.fifoGivenUp);
 }
 
 void ControllerService::load(std::uint64_t client, std::uint64_t id, const pb::LoadScene& request,

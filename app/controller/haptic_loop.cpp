@@ -210,6 +210,8 @@ void HapticLoop::publish(FrameStatus status, std::uint64_t frame) noexcept {
   s.compute = computeSummary_;
   s.resyncs = resyncs_;
   s.skippedPeriods = skippedPeriods_;
+  s.fifoHeld = realtime_.fifo.ok && fifoHold_.held();
+  s.fifoGivenUp = fifoHold_.givenUp();
   s.missedDeadlines = workspace_.counters.missedDeadlines;
   snapshots_.publish();
 }
@@ -239,10 +241,28 @@ void HapticLoop::run() noexcept {
     const FrameStatus status =
         stepWithDevices(model_, state_, workspace_, devices_, handles_, inputs, outputs_);
     lastStepS = std::chrono::duration<double>(std::chrono::steady_clock::now() - inputs.now).count();
-    compute_.record(monotonicTime().nowNs() - tick.beganNs);
+    const std::int64_t computeNs = monotonicTime().nowNs() - tick.beganNs;
+    compute_.record(computeNs);
+    if (realtime_.fifo.ok) holdFifo(tick.beganNs - tick.deadlineNs, computeNs);
     publish(status, frame);
     if (status & kFrameStopped) break;
-    if (realtime_.fifo.ok) yieldToEqualPriority();
+    if (fifoHold_.held() && realtime_.fifo.ok) yieldToEqualPriority();
+  }
+}
+
+void HapticLoop::holdFifo(std::int64_t lateNs, std::int64_t computeNs) noexcept {
+  // a frame that waited for its deadline begins within microseconds of it (the clock spins)
+  const bool beganLate = lateNs > options_.periodNs / 10;
+  const bool quick = computeNs < options_.periodNs / 2;
+  switch (fifoHold_.afterFrame(beganLate, quick)) {
+    case FifoHold::Change::GiveUp:
+      leaveFifo();
+      break;
+    case FifoHold::Change::TakeAgain:
+      if (!enterFifo(options_.fifoPriority)) fifoHold_.refused();
+      break;
+    case FifoHold::Change::None:
+      break;
   }
 }
 

@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "haptics/runtime/fifo_hold.h"
 #include "haptics/runtime/jitter_buffer.h"
 #include "haptics/runtime/period_stats.h"
 #include "haptics/runtime/realtime.h"
@@ -88,6 +89,8 @@ struct FrameSnapshot {
   std::uint64_t resyncs = 0;          ///< stalls after which the clock re-synced
   std::uint64_t skippedPeriods = 0;   ///< periods those stalls skipped
   std::uint64_t missedDeadlines = 0;  ///< the engine's (more contacts than its capacity)
+  bool fifoHeld = false;              ///< the haptic thread is under SCHED_FIFO now
+  std::uint64_t fifoGivenUp = 0;      ///< times it gave SCHED_FIFO up, its frames overrunning (FifoHold)
 };
 
 struct HapticLoopOptions {
@@ -165,6 +168,9 @@ private:
   void coupleSharedObjects(std::int64_t nowUs) noexcept;
   void retire(std::size_t object) noexcept;
   void publish(FrameStatus status, std::uint64_t frame) noexcept;
+  /// Gives SCHED_FIFO up or takes it again as fifoHold_ decides, after a frame that began
+  /// `lateNs` past its deadline and computed for `computeNs`.
+  void holdFifo(std::int64_t lateNs, std::int64_t computeNs) noexcept;
 
   const SimModel& model_;
   HapticLoopOptions options_;
@@ -191,6 +197,7 @@ private:
   std::uint64_t resyncs_ = 0;
   std::uint64_t skippedPeriods_ = 0;
   RealtimeStatus realtime_;
+  FifoHold fifoHold_;
   std::atomic<bool> stopRequested_{false};
   std::thread thread_;
 };

@@ -32,4 +32,17 @@ void yieldToEqualPriority() noexcept {
   sched_yield();
 }
 
+// sched_setscheduler with pid 0 acts on the calling thread (Linux), without
+// pthread_setschedparam's lock on the thread's descriptor
+bool leaveFifo() noexcept {
+  const sched_param param{};
+  return sched_setscheduler(0, SCHED_OTHER, &param) == 0;
+}
+
+bool enterFifo(int fifoPriority) noexcept {
+  sched_param param{};
+  param.sched_priority = fifoPriority;
+  return sched_setscheduler(0, SCHED_FIFO, &param) == 0;
+}
+
 }  // namespace voxhap

@@ -37,4 +37,11 @@ RealtimeStatus requestRealtime(int fifoPriority);
 /// Never blocks; the haptic thread calls it once a frame.
 void yieldToEqualPriority() noexcept;
 
+/// Puts the calling thread under SCHED_OTHER (its overrunning frames then share the cores
+/// with every ordinary thread; FifoHold decides when). A system call only: never
+/// allocates, locks or throws. True when done.
+bool leaveFifo() noexcept;
+/// Puts the calling thread under SCHED_FIFO at `fifoPriority` again; the same. True when done.
+bool enterFifo(int fifoPriority) noexcept;
+
 }  // namespace voxhap

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sched.h>
 
 #include "haptics/geometry/mesh_builder.h"
 #include "haptics/runtime/frame_clock.h"
@@ -323,6 +324,62 @@ TEST_F(HapticLoopTest, LoopsThatOverrunUnderFifoShareTheCores) {
   for (const auto& d : devices) {
     for (const int others : d->othersWhenDone) EXPECT_GE(others, OverrunningDevice::kOverrunFrames / 3);
   }
+}
+
+// a device whose first frames each take longer than the period; it notes the scheduling
+// policy of the thread that calls it
+class SlowThenQuickDevice final : public HapticDevice {
+public:
+  explicit SlowThenQuickDevice(const DeviceLimits& limits) : limits_(limits) {}
+  Pose handlePose(double) noexcept override {
+    const int frame = frames.fetch_add(1);
+    if (frame < kSlowFrames) {
+      const auto until = std::chrono::steady_clock::now() + 1500us;
+      while (std::chrono::steady_clock::now() < until) {
+      }
+    }
+    policy.store(sched_getscheduler(0));
+    if (frame == kSlowFrames - 1) policyAtLastSlowFrame.store(policy.load());
+    return {};
+  }
+  HandleVelocity handleVelocity(double) noexcept override { return {}; }
+  void setFeedback(const CouplingWrench&) noexcept override {}
+  const DeviceLimits& limits() const noexcept override { return limits_; }
+
+  static constexpr int kSlowFrames = 300;
+  std::atomic<int> frames{0};
+  std::atomic<int> policy{-1};
+  std::atomic<int> policyAtLastSlowFrame{-1};
+
+private:
+  DeviceLimits limits_;
+};
+
+// A loop whose frames overrun gives SCHED_FIFO up (else it would leave ordinary threads,
+// its own peer's comms among them, only the kernel's throttling remainder), and takes it
+// again once its frames are quick (FifoHold).
+TEST_F(HapticLoopTest, ALoopWhoseFramesOverrunGivesSchedFifoUpUntilTheyAreQuickAgain) {
+  loop_->stop();
+  loop_ = std::make_unique<HapticLoop>(model_, makeSimState(model_), nullptr, HapticLoopOptions{});
+  loop_->start();
+  if (!loop_->realtime().fifo.ok) GTEST_SKIP() << "SCHED_FIFO refused here: " << loop_->realtime().fifo.error;
+  SlowThenQuickDevice device(model_.deviceLimits);
+  ASSERT_TRUE(loop_->post({LoopCommand::Kind::Grab, 0, &device, 0, {}}));
+  const auto giveUp = std::chrono::steady_clock::now() + 30s;
+  while (device.frames.load() < SlowThenQuickDevice::kSlowFrames && std::chrono::steady_clock::now() < giveUp)
+    std::this_thread::sleep_for(10ms);
+  ASSERT_GE(device.frames.load(), SlowThenQuickDevice::kSlowFrames);
+  EXPECT_EQ(device.policyAtLastSlowFrame.load(), SCHED_OTHER);
+  const FrameSnapshot slow = waitFor([](const FrameSnapshot& s) { return s.fifoGivenUp > 0; });
+  EXPECT_EQ(slow.fifoGivenUp, 1u);
+  const FrameSnapshot quick = waitFor([](const FrameSnapshot& s) { return s.fifoHeld; });
+  EXPECT_TRUE(quick.fifoHeld);
+  const int framesThen = device.frames.load();
+  while (device.frames.load() < framesThen + 10 && std::chrono::steady_clock::now() < giveUp + 30s)
+    std::this_thread::sleep_for(1ms);
+  EXPECT_EQ(device.policy.load(), SCHED_FIFO);
+  EXPECT_EQ(loop_->latest().fifoGivenUp, 1u);
+  loop_->stop();
 }
 
 TEST_F(HapticLoopTest, AFullQueueRefusesCommandsWithoutBlocking) {
