@@ -5,6 +5,7 @@
 
 #include <asio/connect.hpp>
 #include <asio/write.hpp>
+#include <google/protobuf/descriptor.h>
 
 #include "haptics/core/error.h"
 
@@ -68,11 +69,15 @@ std::optional<pb::ServerMessage> FrontendClient::nextMessage(Duration timeout) {
 }
 
 pb::ServerMessage FrontendClient::request(pb::ClientMessage request) {
+  const google::protobuf::FieldDescriptor* kind =
+      pb::ClientMessage::descriptor()->FindFieldByNumber(request.request_case());
+  const std::string what = kind ? kind->name() : std::string("request");
   const std::uint64_t id = send(std::move(request));
   std::optional<pb::ServerMessage> reply = waitFor(id, timeout_);
   if (!reply) {
-    throw Error(open_ ? "no reply from the controller within " + std::to_string(timeout_.count()) + " ms"
-                      : "the controller closed the connection");
+    throw Error(open_ ? "no reply to " + what + " from the controller within " +
+                            std::to_string(timeout_.count()) + " ms"
+                      : "the controller closed the connection before it replied to " + what);
   }
   return std::move(*reply);
 }
