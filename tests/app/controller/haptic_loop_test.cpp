@@ -326,15 +326,15 @@ TEST_F(HapticLoopTest, LoopsThatOverrunUnderFifoShareTheCores) {
   }
 }
 
-// a device whose first frames each take longer than the period; it notes the scheduling
-// policy of the thread that calls it
+// a device whose first frames each take longer than a period of 4 ms; it notes the
+// scheduling policy of the thread that calls it
 class SlowThenQuickDevice final : public HapticDevice {
 public:
   explicit SlowThenQuickDevice(const DeviceLimits& limits) : limits_(limits) {}
   Pose handlePose(double) noexcept override {
     const int frame = frames.fetch_add(1);
     if (frame < kSlowFrames) {
-      const auto until = std::chrono::steady_clock::now() + 1500us;
+      const auto until = std::chrono::steady_clock::now() + 6ms;
       while (std::chrono::steady_clock::now() < until) {
       }
     }
@@ -346,7 +346,7 @@ public:
   void setFeedback(const CouplingWrench&) noexcept override {}
   const DeviceLimits& limits() const noexcept override { return limits_; }
 
-  static constexpr int kSlowFrames = 300;
+  static constexpr int kSlowFrames = 100;
   std::atomic<int> frames{0};
   std::atomic<int> policy{-1};
   std::atomic<int> policyAtLastSlowFrame{-1};
@@ -360,7 +360,10 @@ private:
 // again once its frames are quick (FifoHold).
 TEST_F(HapticLoopTest, ALoopWhoseFramesOverrunGivesSchedFifoUpUntilTheyAreQuickAgain) {
   loop_->stop();
-  loop_ = std::make_unique<HapticLoop>(model_, makeSimState(model_), nullptr, HapticLoopOptions{});
+  // a period long enough that a sanitizer's frames take less than half of it
+  HapticLoopOptions options;
+  options.periodNs = 4'000'000;
+  loop_ = std::make_unique<HapticLoop>(model_, makeSimState(model_), nullptr, options);
   loop_->start();
   if (!loop_->realtime().fifo.ok) GTEST_SKIP() << "SCHED_FIFO refused here: " << loop_->realtime().fifo.error;
   SlowThenQuickDevice device(model_.deviceLimits);
