@@ -179,23 +179,15 @@ Bounds boundsOf(const TriangleMesh& mesh, double growM) {
   return b;
 }
 
-/// Whether `p` lies inside the closed meshes of `scene` (ray parity).
-bool insideOf(const EmbreeScene& scene, const glm::dvec3& p, std::vector<RayCrossing>& crossings) {
-  static const glm::dvec3 direction = glm::normalize(glm::dvec3(0.267, 0.535, 0.802));
-  crossings.clear();
-  scene.allCrossings(p, direction, 1e3, crossings);
-  return crossings.size() % 2 == 1;
-}
-
 /// The least signed distance of `samples` to the surface of `scene`: positive outside,
 /// negative inside; +infinity when none is within kGapMarginM.
 double leastSignedDistance(std::span<const glm::dvec3> samples, const EmbreeScene& scene) {
   double least = std::numeric_limits<double>::infinity();
-  std::vector<RayCrossing> crossings;
+  InsideVoteScratch vote;
   for (const glm::dvec3& p : samples) {
     const std::optional<ClosestSurfacePoint> q = scene.closestPoint(p, kGapMarginM);
     if (!q) continue;
-    const double d = insideOf(scene, p, crossings) ? -q->distanceM : q->distanceM;
+    const double d = scene.insideAnyPart(p, 1e3, vote) ? -q->distanceM : q->distanceM;
     least = std::min(least, d);
   }
   return least;

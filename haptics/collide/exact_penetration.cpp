@@ -18,14 +18,6 @@
 namespace voxhap {
 namespace {
 
-/// Ray directions of the inside vote: unit, skewed off the axes so that none runs along
-/// the axis-aligned faces and edges CAD models are full of.
-const glm::dvec3 kVoteDirections[] = {
-    glm::normalize(glm::dvec3(1.0, 0.0123, 0.0071)),
-    glm::normalize(glm::dvec3(-0.0093, 1.0, 0.0137)),
-    glm::normalize(glm::dvec3(0.0117, -0.0081, 1.0)),
-};
-
 /// Clearance candidates are taken nearest first, in this many buckets of lower bound.
 constexpr std::size_t kClearanceBuckets = 64;
 
@@ -133,8 +125,7 @@ struct ExactSide {
   std::optional<Pose> lastToOther;
   glm::dvec3 centreLocal{0.0};  // of a sphere holding every probe
   double radiusM = 0.0;
-  std::vector<RayCrossing> hits;
-  std::vector<std::uint32_t> parts;
+  InsideVoteScratch vote;
 };
 
 }  // namespace
@@ -193,24 +184,7 @@ struct ExactPenetration::Impl {
 };
 
 bool ExactPenetration::Impl::voteInside(ExactSide& target, const glm::dvec3& pointLocal) {
-  int votes = 0;
-  for (const glm::dvec3& direction : kVoteDirections) {
-    target.hits.clear();
-    target.scene->allCrossings(pointLocal, direction, target.rayLengthM, target.hits);
-    target.parts.clear();
-    for (const RayCrossing& hit : target.hits) target.parts.push_back(hit.part);
-    std::sort(target.parts.begin(), target.parts.end());
-    // inside the union when inside any part: some part crossed an odd number of times
-    bool odd = false;
-    for (std::size_t i = 0; i < target.parts.size() && !odd;) {
-      std::size_t j = i;
-      while (j < target.parts.size() && target.parts[j] == target.parts[i]) ++j;
-      odd = ((j - i) & 1u) != 0;
-      i = j;
-    }
-    votes += odd ? 1 : 0;
-  }
-  return votes >= 2;
+  return target.scene->insideAnyPart(pointLocal, target.rayLengthM, target.vote);
 }
 
 bool ExactPenetration::Impl::insideNearSurface(ExactSide& target, const glm::dvec3& pointTarget, double hintM,

@@ -185,6 +185,32 @@ void EmbreeScene::allCrossings(const glm::dvec3& origin, const glm::dvec3& direc
             out.end());
 }
 
+bool EmbreeScene::insideAnyPart(const glm::dvec3& point, double rayLengthM,
+                                InsideVoteScratch& scratch) const {
+  static const glm::dvec3 kDirections[] = {
+      glm::normalize(glm::dvec3(1.0, 0.0123, 0.0071)),
+      glm::normalize(glm::dvec3(-0.0093, 1.0, 0.0137)),
+      glm::normalize(glm::dvec3(0.0117, -0.0081, 1.0)),
+  };
+  int votes = 0;
+  for (const glm::dvec3& direction : kDirections) {
+    scratch.hits.clear();
+    allCrossings(point, direction, rayLengthM, scratch.hits);
+    scratch.parts.clear();
+    for (const RayCrossing& hit : scratch.hits) scratch.parts.push_back(hit.part);
+    std::sort(scratch.parts.begin(), scratch.parts.end());
+    bool odd = false;
+    for (std::size_t i = 0; i < scratch.parts.size() && !odd;) {
+      std::size_t k = i;
+      while (k < scratch.parts.size() && scratch.parts[k] == scratch.parts[i]) ++k;
+      odd = ((k - i) & 1u) != 0;
+      i = k;
+    }
+    votes += odd ? 1 : 0;
+  }
+  return votes >= 2;
+}
+
 std::optional<ClosestSurfacePoint> EmbreeScene::closestPoint(const glm::dvec3& point,
                                                              double maxDistanceM) const {
   RTCPointQuery query{};

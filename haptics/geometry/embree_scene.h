@@ -39,6 +39,12 @@ struct ClosestSurfacePoint {
   glm::dvec3 faceNormal;  ///< unit outward normal of that triangle
 };
 
+/// Scratch of EmbreeScene::insideAnyPart(), so that repeated calls do not allocate.
+struct InsideVoteScratch {
+  std::vector<RayCrossing> hits;
+  std::vector<std::uint32_t> parts;
+};
+
 class EmbreeScene {
 public:
   /// Builds a scene of the given meshes (kept by reference: they must outlive it).
@@ -52,6 +58,12 @@ public:
   /// with t in [0, tMaxM], each triangle once, in no particular order.
   void allCrossings(const glm::dvec3& origin, const glm::dvec3& direction, double tMaxM,
                     std::vector<RayCrossing>& out) const;
+
+  /// Whether `point` lies inside the union of the scene's closed meshes: a vote of three
+  /// rays skewed off the axes (CAD models are full of axis-aligned faces and edges that one
+  /// ray could graze), each saying inside when some part is crossed an odd number of times
+  /// within `rayLengthM` (longer than the scene).
+  bool insideAnyPart(const glm::dvec3& point, double rayLengthM, InsideVoteScratch& scratch) const;
 
   /// The closest surface point within `maxDistanceM` of `point`, if any.
   std::optional<ClosestSurfacePoint> closestPoint(const glm::dvec3& point, double maxDistanceM) const;
