@@ -1,6 +1,7 @@
 #include "net/peer/peer_session.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include <sodium.h>
@@ -14,6 +15,8 @@ namespace pb = peer::v1;
 
 /// A gone member is not taken back from others' member lists for this long.
 constexpr double kForgetGoneS = 30.0;
+/// How often one that timed out gets a heartbeat until then.
+constexpr auto kCallGone = std::chrono::milliseconds(100);
 /// A joiner's snapshot is kept for its chunk requests this long.
 constexpr double kKeepSnapshotS = 30.0;
 /// Snapshot bytes a chunk carries (with its framing it stays under the largest payload).
@@ -220,10 +223,16 @@ void PeerSession::onDatagram(std::size_t size) {
   }
 }
 
-PeerSession::Member* PeerSession::admit(PeerId peer, const asio::ip::udp::endpoint& endpoint) {
+PeerSession::Member* PeerSession::admit(PeerId peer, const asio::ip::udp::endpoint& endpoint, bool itself) {
   if (const auto it = members_.find(peer); it != members_.end()) return &it->second;
   if (const auto it = gone_.find(peer); it != gone_.end()) {
-    if (secondsBetween(it->second, Clock::now()) < kForgetGoneS) return nullptr;
+    const double goneS = secondsBetween(it->second.since, Clock::now());
+    const bool back = itself && !it->second.left;
+    if (goneS < kForgetGoneS && !back) return nullptr;
+    if (back) {
+      log_("peer " + std::to_string(peer) + " is heard again, " + std::to_string(std::lround(goneS * 1e3)) +
+           " ms after it timed out");
+    }
     gone_.erase(it);
   }
   if (members_.size() + 1 >= DatagramOpener::kMaxSenders) return nullptr;
@@ -234,13 +243,14 @@ PeerSession::Member* PeerSession::admit(PeerId peer, const asio::ip::udp::endpoi
   return &m;
 }
 
-void PeerSession::drop(PeerId peer, const std::string& why) {
+void PeerSession::drop(PeerId peer, const std::string& why, bool left) {
   const auto it = members_.find(peer);
   if (it == members_.end()) return;
   log_("peer " + std::to_string(peer) + (it->second.name.empty() ? "" : " (" + it->second.name + ")") + " " +
        why);
+  const Clock::time_point now = Clock::now();
+  gone_[peer] = {now, it->second.endpoint, left, now};
   members_.erase(it);
-  gone_[peer] = Clock::now();
   opener_.forget(peer);
   snapshots_.erase(peer);
   settleOwners();
@@ -252,10 +262,10 @@ void PeerSession::onState(PeerId from, const DatagramHeader& header, const pb::P
     return;
   }
   if (state.leaving()) {
-    drop(from, "left");
+    drop(from, "left", true);
     return;
   }
-  Member* m = admit(from, sender_);
+  Member* m = admit(from, sender_, true);
   if (m == nullptr) {
     ++counts_.unexpected;
     return;
@@ -287,7 +297,7 @@ void PeerSession::onState(PeerId from, const DatagramHeader& header, const pb::P
   for (const pb::Member& gossip : state.members()) {
     if (gossip.peer() == self_ || gossip.peer() == kNoPeer || members_.count(gossip.peer())) continue;
     const std::optional<asio::ip::udp::endpoint> endpoint = parseEndpoint(gossip.endpoint());
-    if (endpoint) admit(gossip.peer(), *endpoint);
+    if (endpoint) admit(gossip.peer(), *endpoint, false);
   }
   settleOwners();
   const std::int64_t arrivalUs =
@@ -463,7 +473,7 @@ std::vector<std::byte> PeerSession::join(const std::string& host, std::uint16_t 
     // the welcoming peer is where we reached it, whatever address it bound
     const std::optional<asio::ip::udp::endpoint> endpoint =
         m.peer() == welcomer_ ? contact : parseEndpoint(m.endpoint());
-    if (endpoint) admit(m.peer(), *endpoint);
+    if (endpoint) admit(m.peer(), *endpoint, false);
   }
   io_.restart();
   return std::move(joinSnapshot_);
@@ -576,7 +586,7 @@ void PeerSession::tick(const LocalFrame& frame) {
     if (now - m.heard > options_.timeout) silent.push_back(id);
   }
   for (const PeerId id : silent)
-    drop(id, "timed out (nothing heard for " + std::to_string(options_.timeout.count()) + " ms)");
+    drop(id, "timed out (nothing heard for " + std::to_string(options_.timeout.count()) + " ms)", false);
   for (auto it = snapshots_.begin(); it != snapshots_.end();) {
     it = secondsBetween(it->second.made, now) > kKeepSnapshotS ? snapshots_.erase(it) : std::next(it);
   }
@@ -596,6 +606,11 @@ void PeerSession::tick(const LocalFrame& frame) {
   for (auto& [id, m] : members_) {
     send(m.endpoint, DatagramKind::State, state);
     m.bytesOut += kDatagramHeaderBytes + kDatagramTagBytes + state.ByteSizeLong();
+  }
+  for (auto& [id, g] : gone_) {
+    if (g.left || now < g.nextCall || secondsBetween(g.since, now) >= kForgetGoneS) continue;
+    send(g.endpoint, DatagramKind::State, state);
+    g.nextCall = now + kCallGone;
   }
 }
 

@@ -9,7 +9,11 @@
 /// chunks, then streams. The Welcome lists the members; every heartbeat lists the members
 /// its sender hears from, so members learn of each other whoever they joined through.
 /// A member not heard from for `timeout` is gone, as is one whose heartbeat says it is
-/// leaving; a gone member is not taken back from others' lists for kForgetGoneS.
+/// leaving; a gone member is not taken back from others' lists for kForgetGoneS. One that
+/// timed out still gets a heartbeat every kCallGone until then, and is back as soon as
+/// its own heartbeat comes: a stall longer than the timeout on either side (a suspended
+/// laptop, a starved comms thread) makes both time each other out, and without these
+/// calls neither would send to the other again.
 ///
 /// Ownership, as state in every heartbeat (no reliable channel needed: a lost heartbeat
 /// only delays the next): a peer lists what it owns, what it wants and what its users
@@ -175,6 +179,12 @@ private:
     OneWayDelay delay;
     std::uint64_t bytesIn = 0, bytesOut = 0;
   };
+  struct Gone {
+    Clock::time_point since{};
+    asio::ip::udp::endpoint endpoint;
+    bool left = false;  ///< said so; else timed out
+    Clock::time_point nextCall{};
+  };
   struct Snapshot {
     std::vector<std::byte> bytes;
     Clock::time_point made{};
@@ -187,9 +197,10 @@ private:
   void onJoin(PeerId from, const peer::v1::Join& join);
   void send(const asio::ip::udp::endpoint& to, DatagramKind kind, const google::protobuf::Message& payload);
   void sendEvent(const asio::ip::udp::endpoint& to, const peer::v1::Event& event);
-  /// Adds `peer` at `endpoint` when it is not a member and not recently gone.
-  Member* admit(PeerId peer, const asio::ip::udp::endpoint& endpoint);
-  void drop(PeerId peer, const std::string& why);
+  /// Adds `peer` at `endpoint` when it is not a member and not recently gone; `itself`:
+  /// its own heartbeat came (not word of it from others), which takes one that timed out back.
+  Member* admit(PeerId peer, const asio::ip::udp::endpoint& endpoint, bool itself);
+  void drop(PeerId peer, const std::string& why, bool left);
   /// Recomputes owners_ from the members' claims and mine_, calling onOwner for changes.
   void settleOwners();
   peer::v1::PeerState heartbeat(const LocalFrame& frame, bool leaving) const;
@@ -207,7 +218,7 @@ private:
   std::vector<std::uint8_t> inBuffer_, payloadBuffer_, outBuffer_;
   asio::ip::udp::endpoint sender_;
   std::map<PeerId, Member> members_;
-  std::map<PeerId, Clock::time_point> gone_;
+  std::map<PeerId, Gone> gone_;
   std::map<PeerId, Snapshot> snapshots_;  ///< one per joiner, served in chunks
   std::set<std::uint32_t> mine_, wants_, shares_;
   std::vector<PeerId> owners_;

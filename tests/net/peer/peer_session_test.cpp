@@ -4,6 +4,7 @@
 
 #include "net/peer/peer_session.h"
 
+#include <algorithm>
 #include <random>
 
 #include <asio/ip/udp.hpp>
@@ -222,6 +223,44 @@ TEST(PeerSession, ALeaverIsGoneAtOnceASilentOneAfterTheTimeoutAndTheirObjectsAre
   run(io, {&a}, 80);
   EXPECT_TRUE(a.session->members().empty());
   EXPECT_EQ(a.owners[2], kNoPeer);
+}
+
+// A stall longer than the time-out (a suspended machine, a starved comms thread) makes
+// both sides time each other out; they hear each other again when both go on, and the
+// objects come back to their owners. A leaver is not taken back.
+TEST(PeerSession, PeersThatTimedEachOtherOutInAStallAreMembersAgainWhenItEnds) {
+  asio::io_context io;
+  TestPeer a(io, "ann"), b(io, "bob"), c(io, "cyd");
+  a.start();
+  b.session->join("127.0.0.1", a.session->port(), 5s);
+  b.start();
+  c.session->join("127.0.0.1", a.session->port(), 5s);
+  c.start();
+  b.session->want(1);
+  run(io, {&a, &b, &c});
+  ASSERT_EQ(a.owners[1], b.session->self());
+
+  c.session->leave(c.frame());
+  run(io, {&a, &b}, 2);
+  // nobody ticks for 400 ms (more than the 300 ms time-out), then each times the other out
+  io.restart();
+  io.run_for(400ms);
+  run(io, {&a, &b}, 60);  // 300 ms: calls every 100 ms
+  const auto logged = [](const TestPeer& p, const std::string& what) {
+    return std::any_of(p.log.begin(), p.log.end(),
+                       [&](const std::string& line) { return line.find(what) != std::string::npos; });
+  };
+  for (const TestPeer* p : {&a, &b}) {
+    EXPECT_TRUE(logged(*p, "timed out")) << p->session->self();
+    EXPECT_TRUE(logged(*p, "is heard again")) << p->session->self();
+    ASSERT_EQ(p->session->members().size(), 1u) << p->session->self();
+    EXPECT_EQ(p->owners[1], b.session->self());
+  }
+  EXPECT_EQ(a.session->members()[0].peer, b.session->self());
+  // the leaver, ticking again, stays gone
+  run(io, {&a, &b, &c}, 40);
+  EXPECT_EQ(a.session->members().size(), 1u);
+  EXPECT_EQ(b.session->members().size(), 1u);
 }
 
 TEST(PeerSession, AStateWhoseClockIsImpossibleIsDroppedAsMalformed) {
