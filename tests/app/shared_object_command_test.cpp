@@ -4,6 +4,11 @@
 // of the other boxes) and lets go; the other sharers' instances, which nobody holds there,
 // follow through the coupling. Front-end clients read what every peer shows. Every wait
 // is bounded; no assertion is about how long anything took.
+//
+// Three of the longest cases run in Release only: they vary the delay and the number of
+// sharers, which a sanitizer does not judge, and each took two to four minutes under
+// ASan; the cases the sanitizers run take the same code paths (relays with jitter and
+// loss, five sharers, the passivity controller off, joins, leaves and deaths).
 
 #include <algorithm>
 #include <atomic>
@@ -23,6 +28,7 @@
 #include "net/frontend/pose_proto.h"
 #include "support/newest_update.h"
 #include "support/peer_processes.h"
+#include "support/sanitizers.h"
 
 namespace voxhap::test {
 namespace {
@@ -292,6 +298,7 @@ TEST_F(SharedObjectCommand, FiveSharersThroughRelaysOf100Milliseconds) {
 }
 
 TEST_F(SharedObjectCommand, FiveSharersDirectlyAndThroughRelaysOf300Milliseconds) {
+  if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
   const Sharing five{.sharers = 5, .passivity = true, .dragM = 0.010, .extra = {}};
   expectCoupled(shareScenario(*this, {}, five));
   // each unheld instance pulled towards the average of four, 330 ms old: the softest
@@ -308,6 +315,7 @@ TEST_F(SharedObjectCommand, WithoutThePassivityControllerTwoSharersStayStableUpT
 }
 
 TEST_F(SharedObjectCommand, AtOneSecondOfDelayFiveSharersWithoutThePassivityControllerDoNotDriftApart) {
+  if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
   const ShareFigures f =
       shareScenario(*this, {"1000", "20%", "50"},
                     {.sharers = 5, .passivity = false, .dragM = 0.005, .extra = {"--timeout", "5"}});
@@ -318,6 +326,7 @@ TEST_F(SharedObjectCommand, AtOneSecondOfDelayFiveSharersWithoutThePassivityCont
 }
 
 TEST_F(SharedObjectCommand, AtOneSecondOfDelayTheCouplingHasAlmostNoStiffnessLeft) {
+  if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
   // the weight of an instance a second old is zero (paper §6.1); the measured delay, ± the
   // jitter and its filter's hysteresis, leaves a tenth at most
   const ShareFigures f =
