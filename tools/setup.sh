@@ -73,13 +73,19 @@ check_format() {
   say "every source formatted"
 }
 
-# configure once per preset; later builds re-run CMake by themselves when needed
+# configure once per preset; later builds re-run CMake by themselves when needed; the
+# targets after the preset, when given, are all that is built
 build() {
   local preset=$1
+  shift
   if [ ! -f "build/$preset/CMakeCache.txt" ]; then
     cmake --preset "$preset"
   fi
-  cmake --build --preset "$preset" -j "$(nproc)"
+  if [ $# -gt 0 ]; then
+    cmake --build --preset "$preset" -j "$(nproc)" --target "$@"
+  else
+    cmake --build --preset "$preset" -j "$(nproc)"
+  fi
 }
 
 case "${1:-}" in
@@ -107,7 +113,8 @@ case "${1:-}" in
     ctest --preset asan
     # the threads of the haptic controller (haptic loop, comms, devices, front-end server)
     # again under ThreadSanitizer
-    build tsan
+    # (only what those tests run: the renderer's and the benches' programs are not built)
+    build tsan voxhap voxhap_tests
     ctest --preset tsan -R "$tsan_tests"
     say "all tests passed (Release and ASan+UBSan; the controller's under TSan too)"
     ;;
