@@ -91,6 +91,15 @@ void run(asio::io_context& io, std::initializer_list<TestPeer*> peers, int round
   }
 }
 
+/// Starts `first`, then `second` and `third` joined through it.
+void startJoinedThroughFirst(TestPeer& first, TestPeer& second, TestPeer& third) {
+  first.start();
+  for (TestPeer* p : {&second, &third}) {
+    p->session->join("127.0.0.1", first.session->port(), 5s);
+    p->start();
+  }
+}
+
 std::vector<std::byte> patternBytes(std::size_t n) {
   std::vector<std::byte> bytes(n);
   for (std::size_t i = 0; i < n; ++i) bytes[i] = static_cast<std::byte>(i * 7 + 3);
@@ -202,11 +211,7 @@ TEST(PeerSession, OwnersStreamTheirObjectsHandOverWhatIsWantedAndTheLowerIdWinsA
 TEST(PeerSession, ALeaverIsGoneAtOnceASilentOneAfterTheTimeoutAndTheirObjectsAreNobodys) {
   asio::io_context io;
   TestPeer a(io, "ann"), b(io, "bob"), c(io, "cyd");
-  a.start();
-  b.session->join("127.0.0.1", a.session->port(), 5s);
-  b.start();
-  c.session->join("127.0.0.1", a.session->port(), 5s);
-  c.start();
+  startJoinedThroughFirst(a, b, c);
   b.session->want(1);
   c.session->want(2);
   run(io, {&a, &b, &c});
@@ -231,11 +236,7 @@ TEST(PeerSession, ALeaverIsGoneAtOnceASilentOneAfterTheTimeoutAndTheirObjectsAre
 TEST(PeerSession, PeersThatTimedEachOtherOutInAStallAreMembersAgainWhenItEnds) {
   asio::io_context io;
   TestPeer a(io, "ann"), b(io, "bob"), c(io, "cyd");
-  a.start();
-  b.session->join("127.0.0.1", a.session->port(), 5s);
-  b.start();
-  c.session->join("127.0.0.1", a.session->port(), 5s);
-  c.start();
+  startJoinedThroughFirst(a, b, c);
   b.session->want(1);
   run(io, {&a, &b, &c});
   ASSERT_EQ(a.owners[1], b.session->self());
