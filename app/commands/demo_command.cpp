@@ -30,6 +30,8 @@
 #include "haptics/core/error.h"
 #include "haptics/device/motion_script.h"
 #include "haptics/scene/builtin/builtin_scenes.h"
+#include "haptics/sim/scene_model.h"
+#include "haptics/voxel/voxmap.h"
 #include "render/gl_context.h"
 
 namespace voxhap::cli {
@@ -219,10 +221,16 @@ int runDemo(const DemoArgs& args, const CommandContext& c) {
   // exact overlap of every pair of moving parts, at the poses every peer showed, every
   // other sample of each (each measure near contact takes tens of ms)
   c.console.info("measuring overlaps exactly on the meshes");
+  // each part's own surface voxmap filters the other's probes (exact_penetration.h,
+  // "Filter"): without them every probe inside the other's bounding box took the exact test
   std::vector<ExactBody> bodies;
+  std::vector<Voxmap> voxmaps;
+  voxmaps.reserve(r.objects.size());
   for (const std::string& name : r.objects) {
     ExactBody& body = bodies.emplace_back();
-    for (const Part& part : scene.find(name)->parts) body.meshesLocal.push_back(&part.mesh);
+    const SceneObject& object = *scene.find(name);
+    for (const Part& part : object.parts) body.meshesLocal.push_back(&part.mesh);
+    body.voxmapLocal = &voxmaps.emplace_back(movingSurfaceVoxmap(object, options.model, {}));
   }
   const double probeSpacingM = options.model.staticVoxelSizeM / kProbesPerVoxel;
   std::vector<PairFigures> pairs;
