@@ -261,6 +261,13 @@ TEST_F(HapticLoopTest, StopRetiresTheDevicesStillHeldAndKeepsItsStatistics) {
   EXPECT_FALSE(loop_->realtime().fifo.ok);  // not asked for
 }
 
+/// Keeps the calling thread busy (never sleeping) for `duration`.
+void busyFor(std::chrono::nanoseconds duration) {
+  const auto until = std::chrono::steady_clock::now() + duration;
+  while (std::chrono::steady_clock::now() < until) {
+  }
+}
+
 // a device whose first frames each take longer than the period, so that its loop never
 // sleeps until it has done them; when it has, it notes how far every other such device got
 class OverrunningDevice final : public HapticDevice {
@@ -269,9 +276,7 @@ public:
       : limits_(limits), all_(all) {}
   Pose handlePose(double) noexcept override {
     if (frames.load() < kOverrunFrames) {
-      const auto until = std::chrono::steady_clock::now() + 1500us;
-      while (std::chrono::steady_clock::now() < until) {
-      }
+      busyFor(1500us);
       if (frames.fetch_add(1) + 1 == kOverrunFrames) {
         for (std::size_t i = 0; i < all_.size(); ++i) othersWhenDone[i] = all_[i]->frames.load();
       }
@@ -333,11 +338,7 @@ public:
   explicit SlowThenQuickDevice(const DeviceLimits& limits) : limits_(limits) {}
   Pose handlePose(double) noexcept override {
     const int frame = frames.fetch_add(1);
-    if (frame < kSlowFrames) {
-      const auto until = std::chrono::steady_clock::now() + 6ms;
-      while (std::chrono::steady_clock::now() < until) {
-      }
-    }
+    if (frame < kSlowFrames) busyFor(6ms);
     policy.store(sched_getscheduler(0));
     if (frame == kSlowFrames - 1) policyAtLastSlowFrame.store(policy.load());
     return {};
