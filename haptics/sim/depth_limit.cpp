@@ -129,15 +129,14 @@ void sweep(DepthLimitScratch& s, std::size_t count) {
 namespace {
 
 /// Sets each body's displacement from `before` to `after` and its inverse mass (zero for a
-/// kinematic body unless `kinematicYields`), and readies the limits; how many bind.
+/// kinematic body that does not yield), and readies the limits; how many bind.
 std::uint32_t setUp(std::span<const MovingObjectModel> objects, std::span<const RigidBodyState> before,
-                    std::span<const RigidBodyState> after, DepthLimitScratch& s, std::size_t count,
-                    bool kinematicYields) {
+                    std::span<const RigidBodyState> after, DepthLimitScratch& s, std::size_t count) {
   for (std::size_t i = 0; i < objects.size(); ++i) {
     Delta& d = s.deltas[i];
     d.linear = after[i].comWorld - before[i].comWorld;
     d.angular = rotationVector(after[i].orientation * glm::conjugate(before[i].orientation));
-    const bool fixed = d.kinematic && !d.yielding && !kinematicYields;
+    const bool fixed = d.kinematic && !d.yielding;
     d.inverseMass = fixed ? 0.0 : objects[i].body.inverseMassPerKg;
     d.inverseInertiaWorld =
         fixed ? glm::dmat3(0.0) : inverseInertiaWorld(objects[i].body, before[i].orientation);
@@ -272,16 +271,20 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
   for (Delta& d : s.deltas) d.refusedLinear = d.refusedAngular = glm::dvec3(0.0);
   std::size_t count = rowCount == 0 ? 0 : groupRows(s, rowCount, before);
   frame.pairs = static_cast<std::uint32_t>(count);
-  // a remote body yields only while it touches what it was trapped against
+  // a remote body yields only while its stream moves it and it touches what it was trapped
+  // against: one that stands (nobody's, or its stream not begun) traps nothing, and stays
+  // where every peer has it
   for (std::size_t i = 0; i < s.deltas.size(); ++i) {
     Delta& d = s.deltas[i];
     const auto body = static_cast<int>(i);
-    d.yielding = d.kinematic && d.yielding &&
+    d.streamed = d.kinematic &&
+                 (after[i].comWorld != before[i].comWorld || after[i].orientation != before[i].orientation);
+    d.yielding = d.streamed && d.yielding &&
                  std::any_of(s.limits.begin(), s.limits.begin() + static_cast<std::ptrdiff_t>(count),
                              [body](const Limit& l) { return l.bodyA == body || l.bodyB == body; });
   }
   if (rowCount == 0) return frame;
-  frame.binding = setUp(objects, before, after, s, count, false);
+  frame.binding = setUp(objects, before, after, s, count);
   double scale = frame.binding == 0 ? 1.0 : solve(s, count);
   // a pair's mean may hold while some of its points pass it: those measured exactly and
   // furthest past get limits of their own, a few rounds
@@ -299,12 +302,12 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
   scale = std::min(limitsScale, travel);
   if (frame.binding == 0 && frame.rowLimits == 0 && scale == 1.0) return frame;
   const bool remote =
-      std::any_of(s.deltas.begin(), s.deltas.end(), [](const Delta& d) { return d.kinematic; });
+      std::any_of(s.deltas.begin(), s.deltas.end(), [](const Delta& d) { return d.streamed; });
   if (remote && (limitsScale < 1.0 || (travel < 1.0 && !scalingTheRestKeepsLimits(s, count)))) {
-    // a local part trapped against a remote one, or pushed by it faster than it can give
-    // way: the remote one yields too
-    for (Delta& d : s.deltas) d.yielding = d.kinematic;
-    setUp(objects, before, after, s, count, true);
+    // a local part trapped against a remote one that moves, or pushed by it faster than it
+    // can give way: the remote one yields too
+    for (Delta& d : s.deltas) d.yielding = d.streamed;
+    setUp(objects, before, after, s, count);
     scale = solve(s, count);
     travel = travelScale(objects, s.deltas);
     scale = std::min({scale, surfaceRowScale(s, rowCount, before), travel});

@@ -131,8 +131,10 @@ struct DepthLimitScratch {
     /// moves it, so that every peer shows it where its owner has it, unless the limits
     /// cannot hold otherwise (a local part trapped between it and a third, or pushed by it
     /// faster than its MaxTravel lets it give way): then it yields
-    /// with its own mass like any body, and goes on yielding until it has no contact left.
+    /// with its own mass like any body, and goes on yielding until it has no contact left
+    /// or its stream no longer moves it.
     bool kinematic = false;
+    bool streamed = false;  ///< kinematic, and its stream moves it this frame
     bool yielding = false;  ///< kept from frame to frame (see kinematic)
     /// Set by the caller each frame: how far any point of the body's shell may move, m.
     double maxTravelM = std::numeric_limits<double>::infinity();

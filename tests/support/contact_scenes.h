@@ -48,10 +48,12 @@ inline SceneModelOptions ampleCapacityOptions() {
   return options;
 }
 
-/// Model of `scene` with `moving` free (not coupled) at voxel size `voxelM`.
+/// Model of `scene` with `moving` free (not coupled) at voxel size `voxelM`, contact by the
+/// paper's voxel planes or by exact surface planes.
 inline SimModel freeModel(const Scene& scene, const std::vector<std::string>& moving, double voxelM,
-                          const glm::dvec3& gravity, bool awareness = true) {
+                          const glm::dvec3& gravity, bool awareness = true, bool surfaceContact = false) {
   SceneModelOptions options = ampleCapacityOptions();
+  options.sim.surfaceContact = surfaceContact;
   options.staticVoxelSizeM = voxelM;
   options.pointSpacingM = voxelM;
   options.sim.gravityWorld = gravity;

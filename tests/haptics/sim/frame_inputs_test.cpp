@@ -176,6 +176,39 @@ TEST(FrameInputs, ARemoteObjectHeldStillStaysToTheBitWhileALocalOneRunsIntoIt) {
   EXPECT_GT(framesLimited, 0u);  // the depth limits held the local box back, and only it
 }
 
+TEST(FrameInputs, ARemoteObjectLeftStillAfterItYieldedIsMovedByNothingElse) {
+  for (const bool surface : {false, true}) {
+    SCOPED_TRACE(surface ? "surface planes" : "voxel planes");
+    const SimModel model =
+        test::freeModel(boxUnderARemoteBox(), {"lower", "upper"}, kVoxel, glm::dvec3(0.0), true, surface);
+    LocalSimulation sim(model);
+    std::vector<KinematicInput> kinematic = upperIsRemote(sim);
+    // down at 50 mm/s, 15 mm: it traps the lower box against the plate and yields
+    const double startZ = kinematic[1].targetWorld.comWorld.z;
+    kinematic[1].targetWorld.linearVelocityWorld = glm::dvec3(0.0, 0.0, -0.05);
+    for (int f = 1; f <= 300; ++f) {
+      kinematic[1].targetWorld.comWorld.z = startZ - 0.05 * f * model.dtS;
+      ASSERT_EQ(sim.step({}, {}, kinematic) & kFrameNonFiniteZeroed, 0);
+    }
+    EXPECT_GT(sim.state.bodies[1].comWorld.z - kinematic[1].targetWorld.comWorld.z, 0.001);
+    // its owner is gone: nobody moves it, so it stays where it is (as HapticLoop has it),
+    // and the lower box, thrown up into it, moves it not at all
+    const RigidBodyState left = sim.state.bodies[1];
+    sim.state.bodies[0].linearVelocityWorld = glm::dvec3(0.0, 0.0, 0.5);
+    std::uint32_t framesLimited = 0;
+    for (int f = 1; f <= 100; ++f) {
+      kinematic[1].targetWorld = sim.state.bodies[1];
+      kinematic[1].targetWorld.linearVelocityWorld = kinematic[1].targetWorld.angularVelocityWorld =
+          glm::dvec3(0.0);
+      ASSERT_EQ(sim.step({}, {}, kinematic) & kFrameNonFiniteZeroed, 0);
+      framesLimited += sim.outputs.depthLimit.binding > 0 ? 1 : 0;
+      ASSERT_EQ(sim.state.bodies[1].comWorld, left.comWorld) << "frame " << f;
+      ASSERT_EQ(sim.state.bodies[1].orientation, left.orientation) << "frame " << f;
+    }
+    EXPECT_GT(framesLimited, 0u);
+  }
+}
+
 TEST(FrameInputs, ARemoteObjectOnThePlateIsLeftToItsOwnerUntilItIsLocal) {
   const SimModel model = remoteBoxModel(boxUnderARemoteBox());
   LocalSimulation sim(model);
