@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bump when the generators' output changes, so that stale cached scenes are not used.
-constexpr int kGeneratedSceneVersion = 3;
+constexpr int kGeneratedSceneVersion = 4;
 
 bool isBuiltin(const std::string& name) {
   for (const std::string& builtin : builtinSceneNames()) {

@@ -44,11 +44,11 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
         command.add_flag("--pre-contact-damping", o.preContactDamping,
                          "damp points approaching in the layer just outside the force layer");
         break;
-      case SimOption::SurfaceContact:
-        command.add_flag("--surface-contact", o.surfaceContact,
-                         "contact finer than a voxel: parts rest about 0.4 point spacings apart, by "
-                         "exact surface planes kept with the voxels (off: the paper's voxel planes, "
-                         "parts resting 1.6-1.9 voxels apart)");
+      case SimOption::PaperContact:
+        command.add_flag("--paper-contact,!--surface-contact", o.paperContact,
+                         "contact by the paper's voxel planes: parts rest 1.6-1.9 voxels apart (default: "
+                         "contact finer than a voxel, by exact surface planes kept with the voxels, parts "
+                         "resting about 0.4 point spacings apart; --surface-contact says so explicitly)");
         break;
       case SimOption::Capacity:
         addParsedOption(command, "--capacity", "N", "point tests per frame (default: measured online)",
@@ -113,9 +113,11 @@ SceneModelOptions sceneModelOptions(const SimOptions& o, Console& console, doubl
   if (o.pointLayer) options.pointFreeLayer = *o.pointLayer;
   options.sim.geometricalAwareness = !o.noAwareness;
   options.sim.preContactDamping = o.preContactDamping;
-  if (o.surfaceContact) {
+  if (!o.paperContact) {
     if (o.pointLayer.value_or(0) > 0)
-      throw UsageError("--point-layer takes the points off the surface, where --surface-contact needs them");
+      throw UsageError(
+          "--point-layer takes the points off the surface, where surface contact (the default) "
+          "needs them: add --paper-contact");
     options.sim.surfaceContact = true;
   }
   options.sim.coherence.enabled = !o.bruteForce;

@@ -1,7 +1,7 @@
 #pragma once
 /// The simulation options `voxhap` commands share, defined once as typed fields: resolution
 /// and sampling (--voxel-size, --point-spacing, --point-offset, --point-layer,
-/// --no-awareness, --pre-contact-damping, --surface-contact), time-critical sampling (--capacity,
+/// --no-awareness, --pre-contact-damping, --paper-contact), time-critical sampling (--capacity,
 /// --brute-force, --no-drifting), paging (--voxel-memory), the device (--device-profile),
 /// the run (--duration), the exact checks' probes (--probe-spacing) and the voxel cache
 /// (--cache-dir, --no-cache). Each command adds the ones it takes to its CLI::App; their
@@ -31,7 +31,7 @@ struct SimOptions {
   std::optional<int> pointLayer;          ///< --point-layer: free-space layer of the points, voxels
   bool noAwareness = false;               ///< --no-awareness: no geometrical awareness
   bool preContactDamping = false;         ///< --pre-contact-damping
-  bool surfaceContact = false;            ///< --surface-contact: contact finer than a voxel
+  bool paperContact = false;              ///< --paper-contact: the paper's voxel planes, not surface planes
   bool bruteForce = false;                ///< --brute-force: every point every frame
   bool noDrifting = false;                ///< --no-drifting: no point drifting
   std::optional<std::uint64_t> capacity;  ///< --capacity: point tests per frame (≥ 1)
@@ -51,7 +51,7 @@ enum class SimOption {
   PointLayer,
   NoAwareness,
   PreContactDamping,
-  SurfaceContact,
+  PaperContact,
   Capacity,
   VoxelMemory,
   BruteForce,

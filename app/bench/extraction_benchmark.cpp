@@ -151,7 +151,7 @@ Benchmark extractionBenchmark() {
     SimOptions& sim = args->extraction.sim;
     command.add_flag("--quick", args->quick, "only the first row (1.0 / 2.5 mm), for CI");
     addSimOptions(command, sim,
-                  {SimOption::SurfaceContact, SimOption::BruteForce, SimOption::Capacity,
+                  {SimOption::PaperContact, SimOption::BruteForce, SimOption::Capacity,
                    SimOption::VoxelMemory, SimOption::Duration});
     command.get_option("--duration")->description("simulated time per row (default: the whole script)");
     addExtractionOptions(command, args->extraction);

@@ -180,7 +180,7 @@ void addExtractCommand(CommandTree& tree) {
   SimOptions& sim = args->extraction.sim;
   addSimOptions(
       command, sim,
-      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::SurfaceContact, SimOption::Capacity,
+      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PaperContact, SimOption::Capacity,
        SimOption::VoxelMemory, SimOption::BruteForce, SimOption::DeviceProfile, SimOption::Duration});
   command.get_option("--voxel-size")->description("voxel size of the static gear (default 2.5mm)");
   command.get_option("--point-spacing")->description("point spacing of the actuator (default 1mm)");

@@ -185,7 +185,7 @@ void addSimulateCommand(CommandTree& tree) {
   SimOptions& sim = args->sim;
   addSimOptions(command, sim,
                 {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::PointLayer,
-                 SimOption::NoAwareness, SimOption::PreContactDamping, SimOption::SurfaceContact,
+                 SimOption::NoAwareness, SimOption::PreContactDamping, SimOption::PaperContact,
                  SimOption::Capacity, SimOption::VoxelMemory, SimOption::BruteForce, SimOption::NoDrifting,
                  SimOption::DeviceProfile, SimOption::Duration});
   command.get_option("--voxel-size")

@@ -120,7 +120,7 @@ void addViewCommand(CommandTree& tree) {
   SimOptions& sim = args->sim;
   addSimOptions(
       command, sim,
-      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::SurfaceContact, SimOption::DeviceProfile});
+      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PaperContact, SimOption::DeviceProfile});
   command.add_flag("--passive", args->passive, "see, never grab or change anything");
   command.add_flag("--no-static-cache", args->noCache,
                    "draw the static parts every frame (no FlyThru cache)");

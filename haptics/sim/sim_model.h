@@ -134,8 +134,10 @@ struct SimOptions {
   bool geometricalAwareness = true;
   bool preContactDamping = false;  ///< see ContactParams
   /// Contact by surface planes where a pair's voxmap has them (ContactParams::
-  /// surfaceContactM: half the point spacing of the pair's pointshell); needs a force
-  /// layer of at least kSurfaceContactForceLayer. Off: the paper's voxel tangent planes.
+  /// surfaceContactM: kSurfaceContactSpacings of the point spacing of the pair's
+  /// pointshell); needs a force layer of at least kSurfaceContactForceLayer. Off: the
+  /// paper's voxel tangent planes, the engine's own default; the commands turn it on unless
+  /// asked for --paper-contact (app/sim_options.h).
   bool surfaceContact = false;
   DeviceLimits deviceLimits;
   CoherenceOptions coherence;

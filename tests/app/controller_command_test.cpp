@@ -107,7 +107,7 @@ TEST_F(ControllerCommand, AClientListsSubscribesChangesTheForceLayerAndShutsItDo
   ASSERT_TRUE(set.has_parameters()) << set.DebugString();
   EXPECT_EQ(set.parameters().force_layer(), 3u);
   EXPECT_GE(set.parameters().max_force_layer(), 4u);
-  EXPECT_EQ(set.parameters().min_force_layer(), 1u);  // the voxels' planes: any layer the voxmaps render
+  EXPECT_EQ(set.parameters().min_force_layer(), 3u);  // surface planes, the default: 3 (contact_params.h)
   const pb::ServerMessage refused = client.request(forceLayer(200));
   ASSERT_TRUE(refused.has_error());
   EXPECT_EQ(refused.error().field(), "force_layer");

@@ -254,7 +254,7 @@ TEST_F(SimulateCommand, SurfaceContactLetsThePegComeCloserWithoutPenetration) {
                                      "--probe-spacing",
                                      "0.25mm",
                                      "--json"};
-    if (surface) args.push_back("--surface-contact");
+    args.push_back(surface ? "--surface-contact" : "--paper-contact");
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return nlohmann::json::parse(r.out).at("exact_penetration");
@@ -270,12 +270,19 @@ TEST_F(SimulateCommand, SurfaceContactLetsThePegComeCloserWithoutPenetration) {
   EXPECT_GT(voxelPlanes.at("min_clearance_m").get<double>(), 0.001) << voxelPlanes.dump(2);
 }
 
-TEST_F(SimulateCommand, PointsInAFreeLayerAreRefusedWithSurfaceContact) {
+TEST_F(SimulateCommand, PointsInAFreeLayerAreRefusedWithSurfaceContactTheDefault) {
   const std::string script = writeScript("0 1 0 0 0 0 0 0\n");
-  const CliRun r = voxhap({"simulate", asset("peg-in-hole.glb"), "--move", "peg", "--script", script,
-                           "--point-layer", "1", "--surface-contact"});
-  EXPECT_EQ(r.exitCode, 2) << r.err;
-  EXPECT_NE(r.err.find("--point-layer"), std::string::npos) << r.err;
+  for (const std::vector<std::string>& contact : {std::vector<std::string>{}, {"--surface-contact"}}) {
+    std::vector<std::string> args = {"simulate", asset("peg-in-hole.glb"), "--move", "peg", "--script",
+                                     script,     "--point-layer",          "1"};
+    args.insert(args.end(), contact.begin(), contact.end());
+    const CliRun r = voxhap(args);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("--paper-contact"), std::string::npos) << r.err;  // names the way out
+  }
+  const CliRun paper = voxhap({"simulate", asset("peg-in-hole.glb"), "--move", "peg", "--script", script,
+                               "--point-layer", "1", "--paper-contact", "--duration", "0.01"});
+  EXPECT_EQ(paper.exitCode, 0) << paper.err;
 }
 
 TEST_F(SimulateCommand, CheckExactOptionsAreChecked) {

@@ -22,6 +22,10 @@ constexpr double kSocketBottomDepthM = 0.040;  // bottom face 15 mm below the ca
 constexpr double kOpeningAboveEquatorDeg = 35.0;
 constexpr int kSocketSegments = 64;
 constexpr int kSocketCavityRings = 15;  // 64·(4 + 2·15) = 2176 triangles
+/// The ball's points, inward along their normals, m. The ball and its cavity have their
+/// vertices on one sphere, a press fit: with surface planes, points on the ball's surface
+/// would press on the cavity all round and the ball could not turn.
+constexpr double kBallPointOffsetM = -0.0005;
 
 }  // namespace
 
@@ -35,6 +39,7 @@ Scene makeBallAndSocket() {
   SceneObject ball;
   ball.name = "ball";
   ball.settings.role = ObjectRole::Dynamic;
+  ball.settings.pointOffsetM = kBallPointOffsetM;
   ball.parts.push_back(makePart("ball", glm::vec4(0.78f, 0.80f, 0.84f, 1.0f), std::move(ballMesh)));
 
   TriangleMesh socketMesh;

@@ -178,7 +178,6 @@ Scene makeLandingGear(std::uint64_t seed, const ProgressFn& progress) {
     SceneObject object;
     object.name = draft.name;
     object.settings.role = draft.role;
-    if (draft.role == ObjectRole::Dynamic) object.settings.pointOffsetM = landing_gear::kActuatorPointOffsetM;
     for (auto& part : draft.parts) {
       doneTriangles += part.mesh.triangles.size();
       object.parts.push_back(makePart(part.name, part.color, std::move(part.mesh)));

@@ -35,11 +35,6 @@ inline constexpr double kEyeHalfHeightM = 0.020;
 inline constexpr double kEyeBoreRadiusM = 0.016;
 /// Gap between an eye's flat face and the clevis plate facing it, m.
 inline constexpr double kClevisGapM = 0.006;
-/// The actuator's point offset (ObjectSettings::pointOffsetM), m: a fifth of a 2.5 mm
-/// voxel inward. At that voxel size the force layer alone holds an eye 4 to 4.75 mm off
-/// a plate, so 1.25 mm of each 6 mm gap is left, and a twist of a fraction of a degree
-/// jams both eyes in their clevises. The offset gives 0.5 mm more on each side.
-inline constexpr double kActuatorPointOffsetM = -0.0005;
 /// Clevis plates: square, centred on the eye's axis, m.
 inline constexpr double kClevisPlateHalfWidthM = 0.060;
 inline constexpr double kClevisPlateThicknessM = 0.020;
