@@ -461,6 +461,20 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     j["haptic_period_max_us"] = state.statistics->period_max_s() * 1e6;
     j["haptic_overruns"] = state.statistics->overruns();
   }
+  // where each moving object ended, so that a run can tell whether a part came out
+  nlohmann::ordered_json objects = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < state.objects.size(); ++k) {
+    if (!state.objects[k].moving()) continue;
+    nlohmann::ordered_json o = {{"name", state.objects[k].name()}, {"held_by", state.objects[k].held_by()}};
+    if (state.frame && static_cast<int>(k) < state.frame->objects_size()) {
+      const pb::ObjectState& f = state.frame->objects(static_cast<int>(k));
+      const glm::dvec3 p = net::fromProto(f.pose()).position;
+      o["displacement_m"] = {p.x, p.y, p.z};
+      o["contacts"] = f.contacts();
+    }
+    objects.push_back(std::move(o));
+  }
+  j["objects"] = std::move(objects);
   if (options.json) {
     out << j.dump(2) << "\n";
     return;
@@ -470,6 +484,17 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       << sceneShownS.value_or(0.0) << " s\nframes           " << cached.frames << " cached at "
       << cached.fps() << " fps, " << uncached.frames << " uncached at " << uncached.fps()
       << " fps\nstatic cache     " << r.cache.redraws << " redraws, " << r.cache.reuses << " reuses\n";
+  out << std::setprecision(4);
+  for (const auto& o : j["objects"]) {
+    out << "moved            " << o["name"].get<std::string>() << " (" << o["held_by"].get<std::string>()
+        << ")";
+    if (o.contains("displacement_m")) {
+      const auto& d = o["displacement_m"];
+      out << " by " << d[0].get<double>() << ", " << d[1].get<double>() << ", " << d[2].get<double>()
+          << " m from its place, " << o["contacts"].get<std::uint32_t>() << " contacts";
+    }
+    out << "\n";
+  }
 }
 
 }  // namespace voxhap::cli

@@ -2,6 +2,7 @@
 // a virtual X server (xvfb-run) of the peg-in-hole, checked for what the scene must show.
 // Every wait is bounded; no assertion is about how long anything took.
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -81,6 +82,13 @@ TEST_F(ViewCommand, AHeadlessScreenshotShowsTheSceneTheSameWithAndWithoutTheStat
       << cached.dump();  // drawn once, reused while the eye stays
   EXPECT_EQ(full.at("frames_uncached"), 60);
   EXPECT_EQ(full.at("cache_redraws"), 0);
+  // the summary says where the held peg ended: held at its place, it stayed within 2 mm
+  ASSERT_EQ(cached.at("objects").size(), 1u) << cached.dump();
+  const nlohmann::json& peg = cached.at("objects")[0];
+  EXPECT_EQ(peg.at("name"), "peg");
+  EXPECT_EQ(peg.at("held_by").get<std::string>().rfind("script:", 0), 0u) << peg.dump();
+  const nlohmann::json& d = peg.at("displacement_m");
+  EXPECT_LT(std::hypot(d[0].get<double>(), d[1].get<double>(), d[2].get<double>()), 0.002) << peg.dump();
 
   const DecodedPng a = decodePng(dir_ / "cached.png");
   const DecodedPng b = decodePng(dir_ / "full.png");
