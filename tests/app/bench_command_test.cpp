@@ -82,9 +82,7 @@ TEST_F(BenchCommand, CsvIntoAMissingFolderFailsBeforeMeasuring) {
 // under ASan it took 150 s, and the voxelizer, the cache and the bench table it runs are
 // every one under ASan in tests of their own.
 TEST_F(BenchCommand, Table1QuickPrintsPlausibleJsonWritesMatchingCsvAndCleansUp) {
-  if (voxhap::test::kAddressSanitizer || voxhap::test::kThreadSanitizer) {
-    GTEST_SKIP() << "Release only (see the note above)";
-  }
+  if (voxhap::test::kSanitizer) GTEST_SKIP() << "Release only (see the note above)";
   const CliRun run = voxhap({"bench", "table1", "--quick", "--json", "--csv", "table1.csv"});
   ASSERT_EQ(run.exitCode, 0) << run.err;
 

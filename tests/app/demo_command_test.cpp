@@ -36,7 +36,7 @@ TEST_F(DemoCommand, PicturesOrNoneNotBoth) {
 }
 
 TEST_F(DemoCommand, ThreePeersPlayTheSessionAndReportItWithoutOverlap) {
-  if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
+  if (kSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
   const ExclusiveSection alone(kLandingGearSessionLock);
   // under a virtual display when there is one to be had, so that it draws its pictures
   const bool xvfb = std::filesystem::exists("/usr/bin/xvfb-run");

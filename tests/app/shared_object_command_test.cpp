@@ -298,7 +298,7 @@ TEST_F(SharedObjectCommand, FiveSharersThroughRelaysOf100Milliseconds) {
 }
 
 TEST_F(SharedObjectCommand, FiveSharersDirectlyAndThroughRelaysOf300Milliseconds) {
-  if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
+  if (kSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
   const Sharing five{.sharers = 5, .passivity = true, .dragM = 0.010, .extra = {}};
   expectCoupled(shareScenario(*this, {}, five));
   // each unheld instance pulled towards the average of four, 330 ms old: the softest
@@ -315,7 +315,7 @@ TEST_F(SharedObjectCommand, WithoutThePassivityControllerTwoSharersStayStableUpT
 }
 
 TEST_F(SharedObjectCommand, AtOneSecondOfDelayFiveSharersWithoutThePassivityControllerDoNotDriftApart) {
-  if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
+  if (kSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
   const ShareFigures f =
       shareScenario(*this, {"1000", "20%", "50"},
                     {.sharers = 5, .passivity = false, .dragM = 0.005, .extra = {"--timeout", "5"}});
@@ -326,7 +326,7 @@ TEST_F(SharedObjectCommand, AtOneSecondOfDelayFiveSharersWithoutThePassivityCont
 }
 
 TEST_F(SharedObjectCommand, AtOneSecondOfDelayTheCouplingHasAlmostNoStiffnessLeft) {
-  if (kAddressSanitizer || kThreadSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
+  if (kSanitizer) GTEST_SKIP() << "Release only (see the note at the top)";
   // the weight of an instance a second old is zero (paper §6.1); the measured delay, ± the
   // jitter and its filter's hysteresis, leaves a tenth at most
   const ShareFigures f =

@@ -17,4 +17,7 @@ inline constexpr bool kThreadSanitizer = true;
 inline constexpr bool kThreadSanitizer = false;
 #endif
 
+/// Either: for the tests that run in Release only, or shorter, under a sanitizer.
+inline constexpr bool kSanitizer = kAddressSanitizer || kThreadSanitizer;
+
 }  // namespace voxhap::test

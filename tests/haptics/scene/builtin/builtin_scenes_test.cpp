@@ -484,7 +484,7 @@ bool sameScene(const Scene& a, const Scene& b) {
 // Release only: what it compares is numbers, and under ASan its three scenes took 64 s;
 // the other LandingGear tests generate the scene there.
 TEST(LandingGear, SameSeedSameSceneOtherSeedOtherScene) {
-  if (test::kAddressSanitizer || test::kThreadSanitizer) GTEST_SKIP() << "Release only (see the note above)";
+  if (test::kSanitizer) GTEST_SKIP() << "Release only (see the note above)";
   const Scene first = makeLandingGear(7);
   const Scene again = makeLandingGear(7);
   const Scene other = makeLandingGear(8);
@@ -511,7 +511,7 @@ TEST(LandingGear, ActuatorClearsStaticPartsAndCanBeExtractedForSeveralSeeds) {
   const std::vector<glm::dvec3> path = landing_gear::extractionPathM();
   // one seed under a sanitizer (the three took 76 s under ASan): the others differ in numbers
   std::vector<std::uint64_t> seeds{1, 2, 0x9E3779B97F4A7C15};
-  if (test::kAddressSanitizer || test::kThreadSanitizer) seeds.resize(1);
+  if (test::kSanitizer) seeds.resize(1);
   for (const std::uint64_t seed : seeds) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const Scene scene = makeLandingGear(seed);
