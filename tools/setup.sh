@@ -18,7 +18,7 @@ packages=(
   libglfw3-dev libgl-dev libepoxy-dev libhidapi-dev libusb-1.0-0-dev libpng-dev libxxhash-dev
   libasio-dev libprotobuf-dev protobuf-compiler python3-protobuf libsodium-dev
   libgtest-dev libgmock-dev libbenchmark-dev clang-format umockdev
-  xvfb xauth libgl1-mesa-dri libimgui-dev libstb-dev
+  xvfb xauth xdotool libgl1-mesa-dri libimgui-dev libstb-dev
 )
 
 # the tests of code that runs on more than one thread, for the tsan preset

@@ -95,6 +95,16 @@ view::LinkState waitForLink(const view::ControllerLink& link, Done done, std::ch
   }
 }
 
+/// The window's title: the scene, and what is being done until the scene shows.
+std::string windowTitle(const std::string& sceneName, bool shown,
+                        const std::optional<pb::LoadProgress>& loading) {
+  std::string title = "Voxhap — " + sceneName;
+  if (shown) return title;
+  if (!loading) return title + " (waiting for the controller)";
+  return title + " (" + loading->stage() + " " +
+         std::to_string(static_cast<int>(100.0 * loading->fraction())) + " %)";
+}
+
 /// Frames and their time, for the summary.
 struct FrameTally {
   std::uint64_t frames = 0;
@@ -420,6 +430,12 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
                                                  [](const auto& p) { return p.has_value(); }));
     const bool shown = state.frame && !state.loading && !state.objects.empty() && proximityShown;
     if (shown && !sceneShownS) sceneShownS = std::chrono::duration<double>(frameEnd - started).count();
+    // the title says when the scene shows (scripts driving the window wait for it)
+    if (std::string title = windowTitle(scene.sourceName, shown, state.loading);
+        title != windowOptions.title) {
+      glfwSetWindowTitle(window.window(), title.c_str());
+      windowOptions.title = std::move(title);
+    }
     if (shown) {
       FrameTally& tally = useCache ? cached : uncached;
       ++tally.frames;

@@ -1,0 +1,218 @@
+// `voxhap view` driven with the real mouse: the executable's window under a virtual X
+// server (xvfb-run), the pointer and buttons moved by xdotool through the X server's XTEST
+// extension, as a user's hand would. The test finds where to click the way the view does
+// (the same camera framing and Embree picking), orbits the eye to a side view with the
+// right button, drags the part with the left and reads where the view's summary says it
+// ended. Every wait is bounded; no assertion is about how long anything took.
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "app/scene_source.h"
+#include "app/view/scene_picker.h"
+#include "render/orbit_camera.h"
+#include "support/child_process.h"
+#include "support/cli_runner.h"
+#include "support/sanitizers.h"
+
+namespace voxhap::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// The window's size in the tests, px (the view frames the scene for its aspect).
+const glm::ivec2 kWindowPx{1024, 768};
+/// The HUD's corner (top left) is left alone: a click there is the HUD's.
+const glm::dvec2 kHudCornerPx{420.0, 420.0};
+/// Longest stroke of a drag, px: the pointer stays in the window, as a user's does.
+constexpr double kStrokePx = 200.0;
+/// A stroke moves the pointer this far between two events, px.
+constexpr double kStepPx = 16.0;
+/// The seconds a script leaves the view between two mouse events, so that each lands in a
+/// frame of its own (llvmpipe draws the landing gear at tens of frames a second).
+constexpr double kEventGapS = 0.15;
+
+/// A bash script run under one virtual X server: it starts the view, waits for its window
+/// to say that the scene shows, then sends the mouse events added to it and Escape. It
+/// keeps the view's eye as those events turn it (the same OrbitCamera calls as the view's).
+class MouseScript {
+public:
+  MouseScript(const std::vector<std::string>& viewArgs, const Scene& scene) {
+    eye_.frame(scene.bounds(), static_cast<double>(kWindowPx.x) / kWindowPx.y);
+    s_ << "set -eu\n" << VOXHAP_EXE << " view";
+    for (const std::string& a : viewArgs) s_ << " '" << a << "'";
+    s_ << " > summary.json 2> view.err &\nview=$!\n"
+       << "w=$(timeout 600 xdotool search --sync --name '^Voxhap — [^(]*$' | head -n 1)\n"  // no "(loading…)"
+       << "xdotool windowfocus --sync \"$w\"\n";
+  }
+  /// The pointer to a window pixel, no button held.
+  void moveTo(glm::dvec2 px) { event("mousemove --window \"$w\" " + xy(px)); }
+  /// Holds `button` (1 left, 3 right), moves the pointer by `deltaPx` in `steps` even steps
+  /// and lets go.
+  void drag(int button, glm::dvec2 deltaPx, int steps) {
+    event("mousedown " + std::to_string(button));
+    glm::dvec2 sent{0.0};
+    for (int i = 1; i <= steps; ++i) {
+      const glm::dvec2 to = glm::round(deltaPx * (static_cast<double>(i) / steps));
+      event("mousemove_relative -- " + xy(to - sent));
+      sent = to;
+    }
+    event("mouseup " + std::to_string(button));
+  }
+  void wait(double seconds) { s_ << "sleep " << seconds << "\n"; }
+  /// A right-drag from the window's lower right quarter: orbits the eye.
+  void orbit(glm::dvec2 deltaPx) {
+    moveTo(0.75 * glm::dvec2(kWindowPx));
+    drag(3, deltaPx, 1);
+    eye_.orbit(deltaPx.x, deltaPx.y);
+  }
+  /// A middle-drag from there: pans the eye.
+  void pan(glm::dvec2 deltaPx) {
+    moveTo(0.75 * glm::dvec2(kWindowPx));
+    drag(2, deltaPx, 1);
+    eye_.pan(deltaPx.x, deltaPx.y, kWindowPx);
+  }
+  const render::OrbitCamera& eye() const { return eye_; }
+  /// The whole script: Escape closes the view, which prints its summary.
+  std::string text() { return s_.str() + "xdotool key --window \"$w\" Escape\nwait $view\n"; }
+
+private:
+  static std::string xy(glm::dvec2 px) {
+    return std::to_string(static_cast<long>(px.x)) + " " + std::to_string(static_cast<long>(px.y));
+  }
+  void event(const std::string& xdotool) { s_ << "xdotool " << xdotool << "\nsleep " << kEventGapS << "\n"; }
+  std::ostringstream s_;
+  render::OrbitCamera eye_;
+};
+
+class ViewMouse : public CliTest {
+protected:
+  static bool haveTools() {
+    return std::filesystem::exists("/usr/bin/xvfb-run") && std::filesystem::exists("/usr/bin/xdotool");
+  }
+
+  /// A window pixel and the point of the scene a click there meets.
+  struct Grab {
+    glm::dvec2 px{0.0};
+    glm::dvec3 pointWorld{0.0};
+  };
+
+  /// The window pixel, off the HUD, at which a click meets scene object `object` first,
+  /// nearest the middle of where it shows; none when it does not show.
+  static std::optional<Grab> grabOn(const Scene& scene, std::size_t object, const render::OrbitCamera& eye) {
+    const view::ScenePicker picker(scene);
+    const std::vector<Pose> posesWorld(scene.objects.size());
+    std::vector<Grab> hits;
+    for (int y = 2; y < kWindowPx.y; y += 4) {
+      for (int x = 2; x < kWindowPx.x; x += 4) {
+        const glm::dvec2 px{x + 0.5, y + 0.5};
+        if (px.x < kHudCornerPx.x && px.y < kHudCornerPx.y) continue;
+        const render::RayWorld ray = eye.rayThroughPixel(px, kWindowPx);
+        const auto hit = picker.pick(ray.originWorld, ray.directionWorld, posesWorld);
+        if (hit && hit->object == object) hits.push_back({px, hit->pointWorld});
+      }
+    }
+    if (hits.empty()) return std::nullopt;
+    glm::dvec2 meanPx{0.0};
+    for (const Grab& h : hits) meanPx += h.px / static_cast<double>(hits.size());
+    return *std::min_element(hits.begin(), hits.end(), [&meanPx](const Grab& a, const Grab& b) {
+      return glm::distance(a.px, meanPx) < glm::distance(b.px, meanPx);
+    });
+  }
+
+  /// Runs `script` under `xvfb-run -a`; the view's JSON summary (exit status checked).
+  nlohmann::json run(MouseScript& script, std::chrono::seconds limit) {
+    { std::ofstream(dir_ / "mouse.sh") << script.text(); }
+    const char* asan = std::getenv("ASAN_OPTIONS");  // see ViewCommand::underXvfb
+    setenv("ASAN_OPTIONS", (std::string(asan ? asan : "") + ":detect_leaks=0").c_str(), 1);
+    // a screen larger than the window (xvfb-run's default, 640x480, would stop the pointer)
+    ChildProcess session("/usr/bin/xvfb-run",
+                         {"-a", "-s", "-screen 0 1600x1200x24", "bash", (dir_ / "mouse.sh").string()}, dir_);
+    const auto status = session.wait(limit);
+    EXPECT_EQ(status.value_or(-2), 0) << session.err() << "\n" << script.text();
+    if (status != 0) return nlohmann::json::object();
+    std::ifstream in(dir_ / "summary.json");
+    return nlohmann::json::parse(in);
+  }
+
+  /// The summary's entry for `name`.
+  static nlohmann::json objectOf(const nlohmann::json& summary, const std::string& name) {
+    for (const nlohmann::json& o : summary.at("objects")) {
+      if (o.at("name") == name) return o;
+    }
+    ADD_FAILURE() << name << " is not in " << summary.dump();
+    return nlohmann::json::object();
+  }
+
+  /// Drags the part whose point `anchorWorld` shows at its pixel by `deltaWorld`, which lies
+  /// in the view plane of the script's eye, as a user whose pointer must stay in the window: in strokes
+  /// of at most kStrokePx, each a click on the point where the part should then be, a
+  /// drag and a pause of `settleS` for the part to follow. Returns where the point should end.
+  static glm::dvec3 dragInStrokes(MouseScript& script, glm::dvec3 anchorWorld, const glm::dvec3& deltaWorld,
+                                  double settleS) {
+    const render::OrbitCamera& eye = script.eye();
+    EXPECT_NEAR(glm::dot(deltaWorld, eye.forwardWorld()), 0.0, 1e-9) << "not in the view plane";
+    const glm::dvec3 endWorld = anchorWorld + deltaWorld;
+    const double lengthPx =
+        glm::distance(eye.project(anchorWorld, kWindowPx).pixelPx, eye.project(endWorld, kWindowPx).pixelPx);
+    const int strokes = std::max(1, static_cast<int>(std::ceil(lengthPx / kStrokePx)));
+    for (int k = 1; k <= strokes; ++k) {
+      const glm::dvec3 toWorld = anchorWorld + deltaWorld * (static_cast<double>(k) / strokes);
+      const glm::dvec2 fromPx =
+          eye.project(anchorWorld + deltaWorld * (static_cast<double>(k - 1) / strokes), kWindowPx).pixelPx;
+      const glm::dvec2 toPx = eye.project(toWorld, kWindowPx).pixelPx;
+      script.moveTo(fromPx);
+      script.drag(1, toPx - fromPx, static_cast<int>(std::ceil(glm::distance(fromPx, toPx) / kStepPx)));
+      script.wait(settleS);
+    }
+    return endWorld;
+  }
+};
+
+TEST_F(ViewMouse, ThePegIsPulledOutOfItsHoleByDraggingIt) {
+  if (!haveTools()) GTEST_SKIP() << "no xvfb-run or xdotool (apt-get install xvfb xauth xdotool)";
+  std::ostringstream messages;
+  cli::Console quiet(messages, false, cli::Verbosity::Quiet);
+  const Scene scene = cli::loadScene("peg-in-hole", 1, quiet);
+  std::size_t peg = scene.objects.size();
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    if (scene.objects[o].name == "peg") peg = o;
+  }
+  ASSERT_LT(peg, scene.objects.size());
+  Bounds pegBounds;
+  for (const Part& part : scene.objects[peg].parts) {
+    for (const glm::vec3& v : part.mesh.positionsWorld) pegBounds.add(glm::dvec3(v));
+  }
+  const double pegLengthM = pegBounds.max.z - pegBounds.min.z;
+
+  MouseScript script({"peg-in-hole", "--voxel-size", "1mm", "--no-realtime", "--size",
+                      std::to_string(kWindowPx.x) + "x" + std::to_string(kWindowPx.y), "--json"},
+                     scene);
+  // level the eye (a right-drag up lowers it to the xy plane), so that up on the screen is +z,
+  // and pan the scene down a third of the window, to leave room above the peg
+  script.orbit({0.0, -std::round(script.eye().pitchRad() / render::OrbitCamera::kOrbitRadPerPx)});
+  ASSERT_NEAR(script.eye().upWorld().z, 1.0, 1e-3);
+  script.pan({0.0, kWindowPx.y / 3.0});
+  const std::optional<Grab> grab = grabOn(scene, peg, script.eye());
+  ASSERT_TRUE(grab) << "the peg does not show in a side view";
+  dragInStrokes(script, grab->pointWorld, {0.0, 0.0, pegLengthM + 0.01}, 1.0);  // up by its length and 10 mm
+  const nlohmann::json summary = run(script, kSanitizer ? 600s : 300s);
+  ASSERT_FALSE(summary.empty());
+  const nlohmann::json o = objectOf(summary, "peg");
+  EXPECT_EQ(o.at("held_by"), "client") << o.dump();  // the view's own grab
+  ASSERT_TRUE(o.contains("displacement_m")) << o.dump();
+  const nlohmann::json& d = o.at("displacement_m");
+  // out of its hole: risen by more than its length, and not beside it
+  EXPECT_GT(d[2].get<double>(), pegLengthM) << o.dump() << " peg length " << pegLengthM;
+  EXPECT_LT(std::hypot(d[0].get<double>(), d[1].get<double>()), 0.5 * pegLengthM) << o.dump();
+}
+
+}  // namespace
+}  // namespace voxhap::test
