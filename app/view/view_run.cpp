@@ -41,13 +41,17 @@ constexpr double kProximityRangeVoxels = 5.0;
 constexpr double kZoomPerNotch = 0.9;
 
 /// What GLFW told us between two frames (its callbacks run inside pollEvents).
+/// Motions are summed as they come, so that a drag begun and ended within one slow frame
+/// still turns the eye.
 struct WindowInput {
   glm::dvec2 cursorPx{0.0};  ///< window coordinates, y down
-  glm::dvec2 previousCursorPx{0.0};
+  glm::dvec2 orbitPx{0.0};   ///< cursor motion with the right button down, this frame
+  glm::dvec2 panPx{0.0};     ///< with the middle button down
   bool leftDown = false;
   bool rightDown = false;
   bool middleDown = false;
-  bool leftPressed = false;  ///< went down this frame
+  bool leftPressed = false;   ///< went down this frame
+  bool leftReleased = false;  ///< went up this frame
   double scrollNotches = 0.0;
   bool frameKey = false;  ///< F
   bool cacheKey = false;  ///< C toggles the static cache
@@ -60,12 +64,19 @@ WindowInput& inputOf(GLFWwindow* window) {
 
 void installInput(GLFWwindow* window, WindowInput& input) {
   glfwSetWindowUserPointer(window, &input);
-  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { inputOf(w).cursorPx = {x, y}; });
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+    WindowInput& in = inputOf(w);
+    const glm::dvec2 motionPx = glm::dvec2(x, y) - in.cursorPx;
+    if (in.rightDown) in.orbitPx += motionPx;
+    if (in.middleDown) in.panPx += motionPx;
+    in.cursorPx = {x, y};
+  });
   glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
     WindowInput& in = inputOf(w);
     const bool down = action == GLFW_PRESS;
     if (button == GLFW_MOUSE_BUTTON_LEFT) {
       in.leftPressed = in.leftPressed || (down && !in.leftDown);
+      in.leftReleased = in.leftReleased || (!down && in.leftDown);
       in.leftDown = down;
     }
     if (button == GLFW_MOUSE_BUTTON_RIGHT) in.rightDown = down;
@@ -184,7 +195,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
   render::GlContextOptions windowOptions;
   windowOptions.widthPx = options.sizePx.x;
   windowOptions.heightPx = options.sizePx.y;
-  windowOptions.title = "Voxhap — " + scene.sourceName;
+  windowOptions.title = windowTitle(scene.sourceName, false, std::nullopt);
   windowOptions.visible = !options.screenshot;
   windowOptions.vsync = !options.screenshot;
   render::GlContext window(windowOptions);
@@ -217,10 +228,10 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
   Clock::time_point frameStart = Clock::now();
 
   while (!window.shouldClose() && !input.closeKey) {
-    input.leftPressed = false;
+    input.leftPressed = input.leftReleased = false;
     input.frameKey = input.cacheKey = false;
     input.scrollNotches = 0.0;
-    input.previousCursorPx = input.cursorPx;
+    input.orbitPx = input.panPx = glm::dvec2(0.0);
     window.pollEvents();
     state = link.state();
     if (!state.connected && !state.error.empty()) {
@@ -233,7 +244,6 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     glfwGetWindowSize(window.window(), &windowW, &windowH);
     const double pxPerScreen = windowW > 0 ? static_cast<double>(fb.x) / windowW : 1.0;
     const glm::dvec2 cursorPx = input.cursorPx * pxPerScreen;
-    const glm::dvec2 cursorDelta = (input.cursorPx - input.previousCursorPx) * pxPerScreen;
 
     // the controller's moving objects, by the renderer's index
     std::vector<int> controllerIndex(moving.size(), -1);
@@ -315,7 +325,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
         dragMode = mode;
       }
     }
-    if (drag && input.leftDown) {
+    if (drag && (input.leftDown || input.leftReleased)) {  // a release: the drag's last motion
       if (mode != dragMode) {  // a modifier pressed or let go: go on from where the handle is
         drag.emplace(dragView, lastHandle, apply(lastHandle, anchorLocal), cursorPx);
         dragMode = mode;
@@ -325,10 +335,13 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
         link.moveHandle(dragObject, next);
       }
       lastHandle = next;
+      if (!input.leftDown) drag.reset();  // a later click elsewhere must not go on with it
     }
     if (!hudHasMouse) {
-      if (input.rightDown) camera.orbit(cursorDelta.x, cursorDelta.y);
-      if (input.middleDown) camera.pan(cursorDelta.x, cursorDelta.y, fb);
+      const glm::dvec2 orbitPx = input.orbitPx * pxPerScreen;
+      const glm::dvec2 panPx = input.panPx * pxPerScreen;
+      if (orbitPx != glm::dvec2(0.0)) camera.orbit(orbitPx.x, orbitPx.y);
+      if (panPx != glm::dvec2(0.0)) camera.pan(panPx.x, panPx.y, fb);
       if (input.scrollNotches != 0.0) camera.zoom(std::pow(kZoomPerNotch, input.scrollNotches));
     }
     if (input.frameKey) camera.frame(renderer.sceneBounds(), static_cast<double>(fb.x) / std::max(1, fb.y));

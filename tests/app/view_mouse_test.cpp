@@ -35,6 +35,8 @@ const glm::dvec2 kHudCornerPx{420.0, 420.0};
 constexpr double kStrokePx = 200.0;
 /// A stroke moves the pointer this far between two events, px.
 constexpr double kStepPx = 16.0;
+/// The view's zoom per wheel notch (app/view/view_run.cpp).
+constexpr double kZoomPerNotch = 0.9;
 /// The seconds a script leaves the view between two mouse events, so that each lands in a
 /// frame of its own (llvmpipe draws the landing gear at tens of frames a second).
 constexpr double kEventGapS = 0.15;
@@ -54,9 +56,10 @@ public:
   }
   /// The pointer to a window pixel, no button held.
   void moveTo(glm::dvec2 px) { event("mousemove --window \"$w\" " + xy(px)); }
-  /// Holds `button` (1 left, 3 right), moves the pointer by `deltaPx` in `steps` even steps
-  /// and lets go.
-  void drag(int button, glm::dvec2 deltaPx, int steps) {
+  /// Holds `button` (1 left, 2 middle, 3 right) and the key `modifier` (none when empty),
+  /// moves the pointer by `deltaPx` in `steps` even steps and lets go.
+  void drag(int button, glm::dvec2 deltaPx, int steps, const std::string& modifier = "") {
+    if (!modifier.empty()) event("keydown " + modifier);
     event("mousedown " + std::to_string(button));
     glm::dvec2 sent{0.0};
     for (int i = 1; i <= steps; ++i) {
@@ -65,6 +68,7 @@ public:
       sent = to;
     }
     event("mouseup " + std::to_string(button));
+    if (!modifier.empty()) event("keyup " + modifier);
   }
   void wait(double seconds) { s_ << "sleep " << seconds << "\n"; }
   /// A right-drag from the window's lower right quarter: orbits the eye.
@@ -78,6 +82,12 @@ public:
     moveTo(0.75 * glm::dvec2(kWindowPx));
     drag(2, deltaPx, 1);
     eye_.pan(deltaPx.x, deltaPx.y, kWindowPx);
+  }
+  /// Wheel notches at the window's centre, up (positive: nearer) or down: zooms the eye.
+  void zoom(int notches) {
+    moveTo(0.5 * glm::dvec2(kWindowPx));
+    for (int i = 0; i < std::abs(notches); ++i) event(notches > 0 ? "click 4" : "click 5");
+    eye_.zoom(std::pow(kZoomPerNotch, notches));
   }
   const render::OrbitCamera& eye() const { return eye_; }
   /// The whole script: Escape closes the view, which prints its summary.
@@ -109,14 +119,30 @@ protected:
   static std::optional<Grab> grabOn(const Scene& scene, std::size_t object, const render::OrbitCamera& eye) {
     const view::ScenePicker picker(scene);
     const std::vector<Pose> posesWorld(scene.objects.size());
-    std::vector<Grab> hits;
-    for (int y = 2; y < kWindowPx.y; y += 4) {
-      for (int x = 2; x < kWindowPx.x; x += 4) {
-        const glm::dvec2 px{x + 0.5, y + 0.5};
-        if (px.x < kHudCornerPx.x && px.y < kHudCornerPx.y) continue;
-        const render::RayWorld ray = eye.rayThroughPixel(px, kWindowPx);
+    // every other pixel; a pixel is taken when it and its eight such neighbours meet the object
+    constexpr int kStepPx = 2;
+    const int columns = kWindowPx.x / kStepPx;
+    const int rows = kWindowPx.y / kStepPx;
+    std::vector<std::optional<glm::dvec3>> met(static_cast<std::size_t>(columns * rows));
+    for (int r = 0; r < rows; ++r) {
+      for (int c = 0; c < columns; ++c) {
+        // where the pointer is when xdotool puts it on that pixel
+        const render::RayWorld ray = eye.rayThroughPixel(glm::dvec2(c, r) * double(kStepPx), kWindowPx);
         const auto hit = picker.pick(ray.originWorld, ray.directionWorld, posesWorld);
-        if (hit && hit->object == object) hits.push_back({px, hit->pointWorld});
+        if (hit && hit->object == object) met[static_cast<std::size_t>(r * columns + c)] = hit->pointWorld;
+      }
+    }
+    std::vector<Grab> hits;
+    for (int r = 1; r + 1 < rows; ++r) {
+      for (int c = 1; c + 1 < columns; ++c) {
+        const glm::dvec2 px = glm::dvec2(c, r) * double(kStepPx);
+        if (px.x < kHudCornerPx.x && px.y < kHudCornerPx.y) continue;
+        bool solid = true;
+        for (int dr = -1; dr <= 1; ++dr) {
+          for (int dc = -1; dc <= 1; ++dc)
+            solid = solid && met[static_cast<std::size_t>((r + dr) * columns + c + dc)];
+        }
+        if (solid) hits.push_back({px, *met[static_cast<std::size_t>(r * columns + c)]});
       }
     }
     if (hits.empty()) return std::nullopt;
@@ -152,27 +178,40 @@ protected:
   }
 
   /// Drags the part whose point `anchorWorld` shows at its pixel by `deltaWorld`, which lies
-  /// in the view plane of the script's eye, as a user whose pointer must stay in the window: in strokes
-  /// of at most kStrokePx, each a click on the point where the part should then be, a
-  /// drag and a pause of `settleS` for the part to follow. Returns where the point should end.
+  /// in the view plane of the script's eye (a plain drag) or along its line of sight (a
+  /// Shift-drag: down brings the part nearer), as a user whose pointer must stay in the
+  /// window: in strokes of at most kStrokePx, each a click on the point where the part should
+  /// then be, a drag and a pause of `settleS` for the part to follow. Returns where the point
+  /// should end.
   static glm::dvec3 dragInStrokes(MouseScript& script, glm::dvec3 anchorWorld, const glm::dvec3& deltaWorld,
                                   double settleS) {
     const render::OrbitCamera& eye = script.eye();
-    EXPECT_NEAR(glm::dot(deltaWorld, eye.forwardWorld()), 0.0, 1e-9) << "not in the view plane";
-    const glm::dvec3 endWorld = anchorWorld + deltaWorld;
-    const double lengthPx =
-        glm::distance(eye.project(anchorWorld, kWindowPx).pixelPx, eye.project(endWorld, kWindowPx).pixelPx);
-    const int strokes = std::max(1, static_cast<int>(std::ceil(lengthPx / kStrokePx)));
+    const double alongSightM = glm::dot(deltaWorld, eye.forwardWorld());
+    // within a hundredth (the eye's angles are whole pixels of a drag)
+    const bool depth = std::abs(alongSightM) > 0.01 * glm::length(deltaWorld);
+    EXPECT_TRUE(!depth ||
+                glm::length(deltaWorld - alongSightM * eye.forwardWorld()) < 0.01 * glm::length(deltaWorld))
+        << "neither in the view plane nor along the line of sight";
+    // HandleDrag's scale: a pixel moves a point at the anchor's depth this far
+    const auto pixelsFor = [&eye, depth](const glm::dvec3& fromWorld, const glm::dvec3& toWorld) {
+      if (!depth) return eye.project(toWorld, kWindowPx).pixelPx - eye.project(fromWorld, kWindowPx).pixelPx;
+      const double depthM = glm::dot(fromWorld - eye.eyeWorld(), eye.forwardWorld());
+      const double metresPerPx = 2.0 * depthM * std::tan(0.5 * render::OrbitCamera::kFovYRad) / kWindowPx.y;
+      return glm::dvec2(0.0, -glm::dot(toWorld - fromWorld, eye.forwardWorld()) / metresPerPx);
+    };
+    const int strokes =
+        std::max(1, static_cast<int>(std::ceil(glm::length(pixelsFor(anchorWorld, anchorWorld + deltaWorld)) /
+                                               kStrokePx)));
     for (int k = 1; k <= strokes; ++k) {
+      const glm::dvec3 fromWorld = anchorWorld + deltaWorld * (static_cast<double>(k - 1) / strokes);
       const glm::dvec3 toWorld = anchorWorld + deltaWorld * (static_cast<double>(k) / strokes);
-      const glm::dvec2 fromPx =
-          eye.project(anchorWorld + deltaWorld * (static_cast<double>(k - 1) / strokes), kWindowPx).pixelPx;
-      const glm::dvec2 toPx = eye.project(toWorld, kWindowPx).pixelPx;
-      script.moveTo(fromPx);
-      script.drag(1, toPx - fromPx, static_cast<int>(std::ceil(glm::distance(fromPx, toPx) / kStepPx)));
+      const glm::dvec2 strokePx = pixelsFor(fromWorld, toWorld);
+      script.moveTo(eye.project(fromWorld, kWindowPx).pixelPx);
+      script.drag(1, strokePx, static_cast<int>(std::ceil(glm::length(strokePx) / kStepPx)),
+                  depth ? "shift" : "");
       script.wait(settleS);
     }
-    return endWorld;
+    return anchorWorld + deltaWorld;
   }
 };
 
