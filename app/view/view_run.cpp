@@ -497,8 +497,13 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     nlohmann::ordered_json o = {{"name", state.objects[k].name()}, {"held_by", state.objects[k].held_by()}};
     if (state.frame && static_cast<int>(k) < state.frame->objects_size()) {
       const pb::ObjectState& f = state.frame->objects(static_cast<int>(k));
-      const glm::dvec3 p = net::fromProto(f.pose()).position;
-      o["displacement_m"] = {p.x, p.y, p.z};
+      // the displacement of its centre (a pose turns about the scene's origin, far from the part)
+      const Pose pose = net::fromProto(f.pose());
+      const auto it = std::find(moving.begin(), moving.end(), state.objects[k].name());
+      const glm::dvec3 centre = it != moving.end() ? centreLocal[it - moving.begin()] : glm::dvec3(0.0);
+      const glm::dvec3 d = apply(pose, centre) - centre;
+      o["displacement_m"] = {d.x, d.y, d.z};
+      o["turned_deg"] = glm::degrees(2.0 * std::acos(std::min(1.0, std::abs(pose.orientation.w))));
       o["contacts"] = f.contacts();
     }
     objects.push_back(std::move(o));
@@ -520,7 +525,8 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     if (o.contains("displacement_m")) {
       const auto& d = o["displacement_m"];
       out << " by " << d[0].get<double>() << ", " << d[1].get<double>() << ", " << d[2].get<double>()
-          << " m from its place, " << o["contacts"].get<std::uint32_t>() << " contacts";
+          << " m from its place, turned " << std::setprecision(1) << o["turned_deg"].get<double>() << "°, "
+          << o["contacts"].get<std::uint32_t>() << " contacts" << std::setprecision(4);
     }
     out << "\n";
   }

@@ -34,18 +34,21 @@ ChildProcess::ChildProcess(const std::string& program, const std::vector<std::st
     const int in = ::open("/dev/null", O_RDONLY);
     const int out = ::open(outFile_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err = ::open(errFile_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (in < 0 || out < 0 || err < 0 || ::chdir(dir.c_str()) != 0) ::_exit(127);
+    // a process group of its own, so that a test that gives up kills what it started too
+    // (xvfb-run's X server and the commands it runs)
+    if (in < 0 || out < 0 || err < 0 || ::chdir(dir.c_str()) != 0 || ::setpgid(0, 0) != 0) ::_exit(127);
     ::dup2(in, 0);
     ::dup2(out, 1);
     ::dup2(err, 2);
     ::execve(program.c_str(), cargs.data(), cenv.data());
     ::_exit(127);
   }
+  ::setpgid(pid_, pid_);  // the child does it too: whichever runs first
 }
 
 ChildProcess::~ChildProcess() {
   if (!status_) {
-    ::kill(pid_, SIGKILL);
+    ::kill(-pid_, SIGKILL);
     int status = 0;
     ::waitpid(pid_, &status, 0);
   }

@@ -20,7 +20,8 @@ public:
   /// named after `name` (several children in one directory need different names).
   ChildProcess(const std::string& program, const std::vector<std::string>& args,
                const std::filesystem::path& dir, const std::string& name = "child");
-  /// Kills it (SIGKILL) when still running.
+  /// Kills it and every process of its group (SIGKILL) when it is still running: it starts a
+  /// group of its own.
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
