@@ -25,6 +25,7 @@ struct ViewArgs {
   std::optional<std::string> screenshot;
   std::optional<std::uint64_t> frames;
   std::optional<std::string> size;
+  std::optional<double> maxFrameRateHz;
   bool json = false;
 };
 
@@ -66,6 +67,11 @@ int runViewCommand(const ViewArgs& args, const CommandContext& c) {
     options.frames = static_cast<int>(*args.frames);
   }
   if (args.size) options.sizePx = parseSize(*args.size);
+  if (args.maxFrameRateHz) {
+    if (!(*args.maxFrameRateHz >= 1.0 && *args.maxFrameRateHz <= 1000.0))
+      throw UsageError("--max-frame-rate wants 1 to 1000 frames a second");
+    options.maxFrameRateHz = *args.maxFrameRateHz;
+  }
   options.json = args.json;
   runView(options, c.console, c.out);
   return kExitOk;
@@ -79,11 +85,12 @@ void addViewCommand(CommandTree& tree) {
   view.usage =
       "voxhap view SCENE [--move NAME] [--device DEVICE] [--voxel-size LENGTH] [--point-spacing LENGTH]\n"
       "       voxhap view --connect HOST:PORT [SCENE] [--token FILE]\n"
-      "       [--passive] [--no-static-cache] [--screenshot FILE.png [--frames N]] [--size WxH] [--json]";
+      "       [--passive] [--no-static-cache] [--max-frame-rate HZ] [--screenshot FILE.png [--frames N]]\n"
+      "       [--size WxH] [--json]";
   view.description =
       "Opens a window on a scene simulated by a haptic controller (paper §6): with a SCENE it\n"
-      "starts one in this process and loads the scene into it (the window shows the progress;\n"
-      "--move names what moves, by default the scene's dynamic objects); with --connect it\n"
+      "starts one in this process and loads the scene into it (the window and its title show the\n"
+      "progress; --move names what moves, by default the scene's dynamic objects); with --connect it\n"
       "talks to a running `voxhap controller`, loading this machine's copy of its scene (SCENE,\n"
       "or the path the controller names).\n\n"
       "The static parts are drawn once into colour and depth and reused while the eye is still\n"
@@ -120,9 +127,9 @@ void addViewCommand(CommandTree& tree) {
   command.add_option("--device", args->device, "grab the first moving part with this device once loaded")
       ->type_name("script:FILE|hand:FILE|spacemouse");
   SimOptions& sim = args->sim;
-  addSimOptions(
-      command, sim,
-      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PaperContact, SimOption::DeviceProfile});
+  addSimOptions(command, sim,
+                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset,
+                 SimOption::PaperContact, SimOption::Capacity, SimOption::DeviceProfile});
   command.add_flag("--passive", args->passive, "see, never grab or change anything");
   command.add_flag("--no-static-cache", args->noCache,
                    "draw the static parts every frame (no FlyThru cache)");
@@ -132,6 +139,11 @@ void addViewCommand(CommandTree& tree) {
   command.add_option("--frames", args->frames, "frames to draw before the screenshot (default 60)")
       ->type_name("N");
   command.add_option("--size", args->size, "window size in pixels (default 1280x720)")->type_name("WxH");
+  command
+      .add_option("--max-frame-rate", args->maxFrameRateHz,
+                  "draw at most this many frames a second (default: as vsync allows), leaving the "
+                  "processor to the haptic thread")
+      ->type_name("HZ");
   addSimOptions(command, sim, {SimOption::Cache});
   command.add_flag("--json", args->json, "print the summary as one JSON document on stdout");
 }

@@ -49,7 +49,10 @@ TEST_F(ViewCommand, UsageErrorsExitTwo) {
         {"view", "peg-in-hole", "--screenshot", "x.png", "--size", "10x10"},
         {"view", "peg-in-hole", "--token", "t"},
         {"view", "--connect", "nowhere"},
-        {"view", "peg-in-hole", "--passive", "--device", "spacemouse"}}) {
+        {"view", "peg-in-hole", "--passive", "--device", "spacemouse"},
+        {"view", "peg-in-hole", "--max-frame-rate", "0"},
+        {"view", "peg-in-hole", "--max-frame-rate", "fast"},
+        {"view", "peg-in-hole", "--capacity", "0"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 2) << args.back() << "\n" << r.err;
   }
