@@ -105,6 +105,27 @@ private:
 
 class ViewMouse : public CliTest {
 protected:
+  /// A built-in scene, as the view loads it.
+  static Scene builtIn(const std::string& name) {
+    std::ostringstream messages;
+    cli::Console quiet(messages, false, cli::Verbosity::Quiet);
+    return cli::loadScene(name, 1, quiet);
+  }
+  /// The index of the scene object `name`, or the object count.
+  static std::size_t indexOf(const Scene& scene, const std::string& name) {
+    std::size_t i = 0;
+    while (i < scene.objects.size() && scene.objects[i].name != name) ++i;
+    return i;
+  }
+  /// Where an object's vertices lie, at the scene's placement.
+  static Bounds boundsOf(const SceneObject& object) {
+    Bounds b;
+    for (const Part& part : object.parts) {
+      for (const glm::vec3& v : part.mesh.positionsWorld) b.add(glm::dvec3(v));
+    }
+    return b;
+  }
+
   static bool haveTools() {
     return std::filesystem::exists("/usr/bin/xvfb-run") && std::filesystem::exists("/usr/bin/xdotool");
   }
@@ -218,18 +239,10 @@ protected:
 
 TEST_F(ViewMouse, ThePegIsPulledOutOfItsHoleByDraggingIt) {
   if (!haveTools()) GTEST_SKIP() << "no xvfb-run or xdotool (apt-get install xvfb xauth xdotool)";
-  std::ostringstream messages;
-  cli::Console quiet(messages, false, cli::Verbosity::Quiet);
-  const Scene scene = cli::loadScene("peg-in-hole", 1, quiet);
-  std::size_t peg = scene.objects.size();
-  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-    if (scene.objects[o].name == "peg") peg = o;
-  }
+  const Scene scene = builtIn("peg-in-hole");
+  const std::size_t peg = indexOf(scene, "peg");
   ASSERT_LT(peg, scene.objects.size());
-  Bounds pegBounds;
-  for (const Part& part : scene.objects[peg].parts) {
-    for (const glm::vec3& v : part.mesh.positionsWorld) pegBounds.add(glm::dvec3(v));
-  }
+  const Bounds pegBounds = boundsOf(scene.objects[peg]);
   const double pegLengthM = pegBounds.max.z - pegBounds.min.z;
 
   MouseScript script({"peg-in-hole", "--voxel-size", "1mm", "--no-realtime", "--size",
@@ -259,13 +272,8 @@ TEST_F(ViewMouse, TheActuatorIsPulledOutOfTheLandingGearByDraggingIt) {
   // voxelizing the landing gear takes about 2 minutes in Release; the view's code is under
   // the sanitizers in the peg's case
   if (kSanitizer) GTEST_SKIP() << "Release only";
-  std::ostringstream messages;
-  cli::Console quiet(messages, false, cli::Verbosity::Quiet);
-  const Scene scene = cli::loadScene("landing-gear", 1, quiet);
-  std::size_t actuator = scene.objects.size();
-  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-    if (scene.objects[o].name == "actuator") actuator = o;
-  }
+  const Scene scene = builtIn("landing-gear");
+  const std::size_t actuator = indexOf(scene, "actuator");
   ASSERT_LT(actuator, scene.objects.size());
   // the controller's haptic thread at SCHED_FIFO where the system grants it, as a user runs
   // it: without, on two cores, the window starved it (period p99 22 ms) and the actuator
@@ -279,10 +287,7 @@ TEST_F(ViewMouse, TheActuatorIsPulledOutOfTheLandingGearByDraggingIt) {
       {std::round((script.eye().yawRad() + 0.5 * std::numbers::pi) / render::OrbitCamera::kOrbitRadPerPx),
        -std::round(script.eye().pitchRad() / render::OrbitCamera::kOrbitRadPerPx)});
   ASSERT_NEAR(script.eye().forwardWorld().y, 1.0, 1e-3);
-  Bounds actuatorBounds;
-  for (const Part& part : scene.objects[actuator].parts) {
-    for (const glm::vec3& v : part.mesh.positionsWorld) actuatorBounds.add(glm::dvec3(v));
-  }
+  const Bounds actuatorBounds = boundsOf(scene.objects[actuator]);
   const glm::dvec2 centrePx =
       script.eye().project(0.5 * (actuatorBounds.min + actuatorBounds.max), kWindowPx).pixelPx;
   script.pan(glm::round(0.5 * glm::dvec2(kWindowPx) - centrePx));
