@@ -1,5 +1,6 @@
 // `voxhap view` as the real executable: its usage errors, and headless screenshots under
-// a virtual X server (xvfb-run) of the peg-in-hole, checked for what the scene must show.
+// a virtual X server (xvfb-run) of the peg-in-hole and of a box over a plate, checked for
+// what the scene must show.
 // Every wait is bounded; no assertion is about how long anything took.
 
 #include <cmath>
@@ -11,8 +12,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "haptics/geometry/mesh_builder.h"
+#include "haptics/scene/gltf_writer.h"
+#include "render/orbit_camera.h"
 #include "support/child_process.h"
 #include "support/cli_runner.h"
+#include "support/contact_scenes.h"
 #include "support/png_decode.h"
 #include "support/sanitizers.h"
 
@@ -114,6 +119,56 @@ TEST_F(ViewCommand, AHeadlessScreenshotShowsTheSceneTheSameWithAndWithoutTheStat
   // colours, can differ a little between them (a few hundred values); a broken cache (static
   // parts missing, moving ones not depth-tested) changes tens of thousands
   EXPECT_LT(differing, 3840) << "of " << 3 * 640 * 200 << " channel values";
+}
+
+TEST_F(ViewCommand, ABoxIsWarmNearThePlateItRestsOnAndItsOwnBlueLiftedAway) {
+  if (!haveXvfb()) GTEST_SKIP() << "no /usr/bin/xvfb-run (apt-get install xvfb xauth)";
+  // a blue 20 mm box held 1 mm above a plate, then lifted 20 mm; the view colours it by the
+  // distances the controller measures: warmer within five voxels of the plate, its own
+  // colour beyond
+  Scene scene;
+  scene.objects.push_back(plate());
+  scene.objects.push_back(meshObject("box", ObjectRole::Dynamic, [](TriangleMesh& m) {
+    appendBox(m, at(0.0, 0.0, 0.011), glm::dvec3(0.01));  // z from 1 to 21 mm
+  }));
+  const glm::vec3 blue{0.1f, 0.2f, 0.9f};
+  scene.objects[1].parts[0].baseColor = glm::vec4(blue, 1.0f);
+  writeGlbFile(scene, dir_ / "box-on-plate.glb");
+  { std::ofstream(dir_ / "hold.txt") << "0 1 0 0 0 0 0 0\n1000 1 0 0 0 0 0 0\n"; }
+  { std::ofstream(dir_ / "lift.txt") << "0 1 0 0 0 0 0 0\n0.3 1 0 0 0 0 0 0.02\n1000 1 0 0 0 0 0 0.02\n"; }
+  const auto shoot = [this](const std::string& script, const std::string& png) {
+    return underXvfb({"view", (dir_ / "box-on-plate.glb").string(), "--move", "box", "--voxel-size", "1mm",
+                      "--no-realtime", "--device", "script:" + (dir_ / script).string(), "--max-frame-rate",
+                      "60", "--frames", "120", "--size", "1024x768", "--screenshot", (dir_ / png).string(),
+                      "--json"});
+  };
+  const nlohmann::json resting = shoot("hold.txt", "resting.png");
+  const nlohmann::json lifted = shoot("lift.txt", "lifted.png");
+  ASSERT_FALSE(resting.empty());
+  ASSERT_FALSE(lifted.empty());
+  EXPECT_NEAR(lifted.at("objects")[0].at("displacement_m")[2].get<double>(), 0.02, 0.002) << lifted.dump();
+
+  // the view's eye: the scene framed for the window, as the view opens it
+  render::OrbitCamera eye;
+  eye.frame(scene.bounds(), 1024.0 / 768.0);
+  // a point on the box's face towards the eye, 2 mm above its bottom edge
+  const glm::dvec3 towardsEye = -eye.forwardWorld();
+  const glm::dvec3 face = std::abs(towardsEye.x) > std::abs(towardsEye.y)
+                              ? glm::dvec3(std::copysign(0.01, towardsEye.x), 0.0, 0.0)
+                              : glm::dvec3(0.0, std::copysign(0.01, towardsEye.y), 0.0);
+  const auto hueAt = [&eye](const DecodedPng& png, const glm::dvec3& pointWorld) {
+    const glm::dvec2 px = eye.project(pointWorld, {1024, 768}).pixelPx;
+    EXPECT_GT(px.y, 270.0) << "under the HUD, whose controls end about 260 px down";
+    const std::array<int, 3> p = png.at(static_cast<std::uint32_t>(px.x), static_cast<std::uint32_t>(px.y));
+    return glm::normalize(glm::vec3(p[0], p[1], p[2]) + 1e-3f);
+  };
+  const glm::vec3 red{1.0f, 0.0f, 0.0f};
+  const glm::vec3 restingHue = hueAt(decodePng(dir_ / "resting.png"), face + glm::dvec3(0.0, 0.0, 0.003));
+  const glm::vec3 liftedHue = hueAt(decodePng(dir_ / "lifted.png"), face + glm::dvec3(0.0, 0.0, 0.023));
+  EXPECT_GT(glm::dot(restingHue, red), glm::dot(restingHue, glm::normalize(blue)))
+      << restingHue.x << " " << restingHue.y << " " << restingHue.z;
+  EXPECT_GT(glm::dot(liftedHue, glm::normalize(blue)), glm::dot(liftedHue, red))
+      << liftedHue.x << " " << liftedHue.y << " " << liftedHue.z;
 }
 
 TEST_F(ViewCommand, APeerWithAWindowEndsWithItsDurationAndSummarisesBoth) {
