@@ -248,6 +248,10 @@ HudActions Hud::draw(const HudModel& model) {
 
   actions.frameScene = ImGui::Button("frame the scene");
   layout_.frameButton = lastItemRect();
+  ImGui::SameLine();
+  bool forceArrow = model.forceArrow;
+  if (ImGui::Checkbox("force arrow", &forceArrow)) actions.forceArrow = forceArrow;
+  layout_.forceArrowCheckbox = lastItemRect();
 
   if (!model.message.empty()) {
     ImGui::Separator();

@@ -214,6 +214,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
   Pose lastHandle;
   glm::dvec3 anchorLocal{0.0};  ///< the grabbed point, in the handle's frame
   bool useCache = options.staticCache;
+  bool showForceArrow = true;
   FrameTally cached;
   FrameTally uncached;
   std::optional<double> firstFrameS;
@@ -266,7 +267,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
         renderer.setPose(i, movingPose[i]);
         renderer.setOtherInstance(i, net::furthestOtherInstance(o));
         const glm::dvec3 forceN(o.force_n().x(), o.force_n().y(), o.force_n().z());
-        if (myGrabs.count(moving[i]) && glm::length(forceN) > 0.0)
+        if (showForceArrow && myGrabs.count(moving[i]) && glm::length(forceN) > 0.0)
           arrow = render::ForceArrow{apply(movingPose[i], centreLocal[i]), forceN, 0.002};
       }
       if (static_cast<std::size_t>(k) < state.proximity.size() && state.proximity[k]) {
@@ -353,6 +354,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     model.renderFps = fpsSmoothed;
     model.passive = options.passive;
     model.message = state.error;
+    model.forceArrow = showForceArrow;
     if (state.loading) model.loading = HudLoading{state.loading->stage(), state.loading->fraction()};
     if (state.statistics) {
       const pb::Statistics& s = *state.statistics;
@@ -424,6 +426,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       if (actions.couplingShare) set.set_coupling_stiffness_share(*actions.couplingShare);
       if (set.ByteSizeLong() > 0) link.setParameters(set);
     }
+    if (actions.forceArrow) showForceArrow = *actions.forceArrow;
     if (actions.frameScene)
       camera.frame(renderer.sceneBounds(), static_cast<double>(fb.x) / std::max(1, fb.y));
 

@@ -1,5 +1,6 @@
 #include "render/hud.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdlib>
@@ -278,6 +279,26 @@ TEST_F(HudTest, ClickingGrabReportsThatObjectOnce) {
   HudActions after;
   frame(hud, model, kPointerAway, &after);
   EXPECT_FALSE(after.any());
+}
+
+TEST_F(HudTest, ClickingTheForceArrowBoxTurnsItOffOnceAndOnAgain) {
+  Hud hud(window_);
+  HudModel model = sampleModel();
+  settle(hud, model);
+  ASSERT_TRUE(hud.layout().forceArrowCheckbox);
+  const HudRectPx box = *hud.layout().forceArrowCheckbox;
+  std::vector<HudActions> actions = click(hud, model, box.centerX(), box.centerY());
+  int reported = 0;
+  for (const HudActions& a : actions) {
+    if (!a.forceArrow) continue;
+    ++reported;
+    EXPECT_FALSE(*a.forceArrow);  // it was on
+  }
+  EXPECT_EQ(reported, 1);
+  model.forceArrow = false;  // the app keeps the choice
+  actions = click(hud, model, box.centerX(), box.centerY());
+  EXPECT_TRUE(
+      std::any_of(actions.begin(), actions.end(), [](const HudActions& a) { return a.forceArrow == true; }));
 }
 
 TEST_F(HudTest, ClickingAHeldObjectReleasesIt) {
