@@ -51,7 +51,7 @@ public:
     eye_.frame(scene.bounds(), static_cast<double>(kWindowPx.x) / kWindowPx.y);
     s_ << "set -eu\n" << VOXHAP_EXE << " view";
     for (const std::string& a : viewArgs) s_ << " '" << a << "'";
-    s_ << " > summary.json 2> view.err &\nview=$!\n"
+    s_ << " > summary.json 2> view.err &\nview=$!\ntrap 'kill \"$view\" 2> /dev/null || true' EXIT\n"
        << "w=$(timeout 600 xdotool search --sync --name '^Voxhap — [^(]*$' | head -n 1)\n"  // no "(loading…)"
        << "xdotool windowfocus --sync \"$w\"\n";
   }
@@ -96,7 +96,7 @@ public:
 
 private:
   static std::string xy(glm::dvec2 px) {
-    return std::to_string(static_cast<long>(px.x)) + " " + std::to_string(static_cast<long>(px.y));
+    return std::to_string(std::lround(px.x)) + " " + std::to_string(std::lround(px.y));
   }
   void event(const std::string& xdotool) { s_ << "xdotool " << xdotool << "\nsleep " << kEventGapS << "\n"; }
   std::ostringstream s_;
