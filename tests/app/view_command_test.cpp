@@ -4,6 +4,7 @@
 // Every wait is bounded; no assertion is about how long anything took.
 
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -169,6 +170,35 @@ TEST_F(ViewCommand, ABoxIsWarmNearThePlateItRestsOnAndItsOwnBlueLiftedAway) {
       << restingHue.x << " " << restingHue.y << " " << restingHue.z;
   EXPECT_GT(glm::dot(liftedHue, glm::normalize(blue)), glm::dot(liftedHue, red))
       << liftedHue.x << " " << liftedHue.y << " " << liftedHue.z;
+}
+
+TEST_F(ViewCommand, APassiveViewConnectsToARunningControllerAndShowsItsScene) {
+  if (!haveXvfb()) GTEST_SKIP() << "no /usr/bin/xvfb-run (apt-get install xvfb xauth)";
+  // a `voxhap controller` process of its own (not the view's in-process one), the view its
+  // front end over loopback, loading its own copy of the scene the controller names
+  ChildProcess controller(VOXHAP_EXE,
+                          {"controller", "peg-in-hole", "--move", "peg", "--voxel-size", "1mm", "--listen",
+                           "127.0.0.1:0", "--no-realtime", "--json"},
+                          dir_, "controller");
+  const auto port = controller.waitForStderr("listening on 127.0.0.1:", 120s);
+  ASSERT_TRUE(port) << controller.err();
+  const nlohmann::json view =
+      underXvfb({"view", "--connect", "127.0.0.1:" + *port, "--passive", "--frames", "30", "--size",
+                 "640x480", "--screenshot", (dir_ / "connected.png").string(), "--json"});
+  ASSERT_FALSE(view.empty());
+  EXPECT_EQ(view.at("frames_cached"), 30) << view.dump();
+  ASSERT_EQ(view.at("objects").size(), 1u) << view.dump();
+  const nlohmann::json& peg = view.at("objects")[0];
+  EXPECT_EQ(peg.at("name"), "peg");
+  EXPECT_EQ(peg.at("held_by"), "") << peg.dump();  // a passive view grabs nothing
+  const nlohmann::json& d = peg.at("displacement_m");
+  EXPECT_LT(std::hypot(d[0].get<double>(), d[1].get<double>(), d[2].get<double>()), 0.002) << peg.dump();
+  const DecodedPng png = decodePng(dir_ / "connected.png");
+  ASSERT_EQ(png.width, 640u);
+  EXPECT_NE(png.at(320, 300), png.at(639, 479));  // a part at the centre, background in the corner
+
+  controller.signal(SIGINT);
+  EXPECT_EQ(controller.wait(30s).value_or(-2), 0) << controller.err();
 }
 
 TEST_F(ViewCommand, APeerWithAWindowEndsWithItsDurationAndSummarisesBoth) {
