@@ -32,12 +32,7 @@ protected:
   /// `voxhap ARGS` (a command with a window) under `xvfb-run -a`; its JSON summary (exit
   /// status checked).
   nlohmann::json underXvfb(const std::vector<std::string>& args) {
-    // under AddressSanitizer the view runs without LeakSanitizer: Mesa's DRI driver, unloaded
-    // when GLFW terminates, leaves blocks LSan reports from an unknown module and no
-    // suppression can name (the HUD tests found it); the view's own parts (link, picker,
-    // in-process controller) are leak-checked in this process by their tests
-    const char* asan = std::getenv("ASAN_OPTIONS");
-    setenv("ASAN_OPTIONS", (std::string(asan ? asan : "") + ":detect_leaks=0").c_str(), 1);
+    windowChildrenWithoutLeakCheck();
     std::vector<std::string> all = {"-a", VOXHAP_EXE};
     all.insert(all.end(), args.begin(), args.end());
     ChildProcess view("/usr/bin/xvfb-run", all, dir_);
@@ -46,6 +41,16 @@ protected:
     return status == 0 ? nlohmann::json::parse(view.out()) : nlohmann::json::object();
   }
   static bool haveXvfb() { return std::filesystem::exists("/usr/bin/xvfb-run"); }
+  /// A script device that holds its part where the scene puts it: the --device value.
+  std::string holdScript() const {
+    std::ofstream(dir_ / "hold.txt") << "0 1 0 0 0 0 0 0\n1000 1 0 0 0 0 0 0\n";
+    return "script:" + (dir_ / "hold.txt").string();
+  }
+  /// How far a summary's object ended from its place in the scene, m.
+  static double distanceFromPlaceM(const nlohmann::json& object) {
+    const nlohmann::json& d = object.at("displacement_m");
+    return std::hypot(d[0].get<double>(), d[1].get<double>(), d[2].get<double>());
+  }
 };
 
 TEST_F(ViewCommand, UsageErrorsExitTwo) {
@@ -70,12 +75,9 @@ TEST_F(ViewCommand, UsageErrorsExitTwo) {
 TEST_F(ViewCommand, AHeadlessScreenshotShowsTheSceneTheSameWithAndWithoutTheStaticCache) {
   if (!haveXvfb()) GTEST_SKIP() << "no /usr/bin/xvfb-run (apt-get install xvfb xauth)";
   // the peg held where the scene puts it, so that both pictures see it in the same place
-  { std::ofstream(dir_ / "hold.txt") << "0 1 0 0 0 0 0 0\n1000 1 0 0 0 0 0 0\n"; }
-  const std::vector<std::string> common = {
-      "peg-in-hole",   "--voxel-size", "1mm",
-      "--no-realtime", "--device",     "script:" + (dir_ / "hold.txt").string(),
-      "--frames",      "60",           "--size",
-      "640x480",       "--json"};
+  const std::vector<std::string> common = {"peg-in-hole", "--voxel-size", "1mm",      "--no-realtime",
+                                           "--device",    holdScript(),   "--frames", "60",
+                                           "--size",      "640x480",      "--json"};
   std::vector<std::string> cachedArgs = {"view"};
   cachedArgs.insert(cachedArgs.end(), common.begin(), common.end());
   cachedArgs.insert(cachedArgs.end(), {"--screenshot", (dir_ / "cached.png").string()});
@@ -96,8 +98,7 @@ TEST_F(ViewCommand, AHeadlessScreenshotShowsTheSceneTheSameWithAndWithoutTheStat
   const nlohmann::json& peg = cached.at("objects")[0];
   EXPECT_EQ(peg.at("name"), "peg");
   EXPECT_EQ(peg.at("held_by").get<std::string>().rfind("script:", 0), 0u) << peg.dump();
-  const nlohmann::json& d = peg.at("displacement_m");
-  EXPECT_LT(std::hypot(d[0].get<double>(), d[1].get<double>(), d[2].get<double>()), 0.002) << peg.dump();
+  EXPECT_LT(distanceFromPlaceM(peg), 0.002) << peg.dump();
 
   const DecodedPng a = decodePng(dir_ / "cached.png");
   const DecodedPng b = decodePng(dir_ / "full.png");
@@ -135,16 +136,14 @@ TEST_F(ViewCommand, ABoxIsWarmNearThePlateItRestsOnAndItsOwnBlueLiftedAway) {
   const glm::vec3 blue{0.1f, 0.2f, 0.9f};
   scene.objects[1].parts[0].baseColor = glm::vec4(blue, 1.0f);
   writeGlbFile(scene, dir_ / "box-on-plate.glb");
-  { std::ofstream(dir_ / "hold.txt") << "0 1 0 0 0 0 0 0\n1000 1 0 0 0 0 0 0\n"; }
   { std::ofstream(dir_ / "lift.txt") << "0 1 0 0 0 0 0 0\n0.3 1 0 0 0 0 0 0.02\n1000 1 0 0 0 0 0 0.02\n"; }
-  const auto shoot = [this](const std::string& script, const std::string& png) {
+  const auto shoot = [this](const std::string& device, const std::string& png) {
     return underXvfb({"view", (dir_ / "box-on-plate.glb").string(), "--move", "box", "--voxel-size", "1mm",
-                      "--no-realtime", "--device", "script:" + (dir_ / script).string(), "--max-frame-rate",
-                      "60", "--frames", "120", "--size", "1024x768", "--screenshot", (dir_ / png).string(),
-                      "--json"});
+                      "--no-realtime", "--device", device, "--max-frame-rate", "60", "--frames", "120",
+                      "--size", "1024x768", "--screenshot", (dir_ / png).string(), "--json"});
   };
-  const nlohmann::json resting = shoot("hold.txt", "resting.png");
-  const nlohmann::json lifted = shoot("lift.txt", "lifted.png");
+  const nlohmann::json resting = shoot(holdScript(), "resting.png");
+  const nlohmann::json lifted = shoot("script:" + (dir_ / "lift.txt").string(), "lifted.png");
   ASSERT_FALSE(resting.empty());
   ASSERT_FALSE(lifted.empty());
   EXPECT_NEAR(lifted.at("objects")[0].at("displacement_m")[2].get<double>(), 0.02, 0.002) << lifted.dump();
@@ -191,8 +190,7 @@ TEST_F(ViewCommand, APassiveViewConnectsToARunningControllerAndShowsItsScene) {
   const nlohmann::json& peg = view.at("objects")[0];
   EXPECT_EQ(peg.at("name"), "peg");
   EXPECT_EQ(peg.at("held_by"), "") << peg.dump();  // a passive view grabs nothing
-  const nlohmann::json& d = peg.at("displacement_m");
-  EXPECT_LT(std::hypot(d[0].get<double>(), d[1].get<double>(), d[2].get<double>()), 0.002) << peg.dump();
+  EXPECT_LT(distanceFromPlaceM(peg), 0.002) << peg.dump();
   const DecodedPng png = decodePng(dir_ / "connected.png");
   ASSERT_EQ(png.width, 640u);
   EXPECT_NE(png.at(320, 300), png.at(639, 479));  // a part at the centre, background in the corner
@@ -203,14 +201,12 @@ TEST_F(ViewCommand, APassiveViewConnectsToARunningControllerAndShowsItsScene) {
 
 TEST_F(ViewCommand, APeerWithAWindowEndsWithItsDurationAndSummarisesBoth) {
   if (!haveXvfb()) GTEST_SKIP() << "no /usr/bin/xvfb-run (apt-get install xvfb xauth)";
-  { std::ofstream(dir_ / "hold.txt") << "0 1 0 0 0 0 0 0\n1000 1 0 0 0 0 0 0\n"; }
   // the controller stops on --duration and closes the window's connection: the window
   // closes as its user had closed it, and the peer leaves and says what both saw (a
   // sanitizer's build takes longer to show the scene)
   const nlohmann::json summary =
-      underXvfb({"peer", "peg-in-hole", "--voxel-size", "1mm", "--take", "peg", "--device",
-                 "script:" + (dir_ / "hold.txt").string(), "--duration", kAddressSanitizer ? "20" : "3",
-                 "--no-realtime", "--json"});
+      underXvfb({"peer", "peg-in-hole", "--voxel-size", "1mm", "--take", "peg", "--device", holdScript(),
+                 "--duration", kAddressSanitizer ? "20" : "3", "--no-realtime", "--json"});
   ASSERT_FALSE(summary.empty());
   EXPECT_EQ(summary.at("stopped_by"), "the duration ran out");
   EXPECT_GT(summary.at("frames").get<std::uint64_t>(), 0u);
