@@ -249,9 +249,9 @@ HudActions Hud::draw(const HudModel& model) {
   actions.frameScene = ImGui::Button("frame the scene");
   layout_.frameButton = lastItemRect();
   ImGui::SameLine();
-  bool forceArrow = model.forceArrow;
-  if (ImGui::Checkbox("force arrow", &forceArrow)) actions.forceArrow = forceArrow;
-  layout_.forceArrowCheckbox = lastItemRect();
+  bool forceOverlay = model.forceOverlay;
+  if (ImGui::Checkbox("force and contacts", &forceOverlay)) actions.forceOverlay = forceOverlay;
+  layout_.forceOverlayCheckbox = lastItemRect();
 
   if (!model.message.empty()) {
     ImGui::Separator();

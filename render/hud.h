@@ -91,8 +91,9 @@ struct HudModel {
   bool passive = false;
   /// The last error or notice; empty for none.
   std::string message;
-  /// The force arrow is drawn on the parts this front end holds.
-  bool forceArrow = true;
+  /// The force arrow is drawn on the parts this front end holds, and the contact points
+  /// of every part.
+  bool forceOverlay = true;
 };
 
 /// What the user asked for during one `Hud::draw`; each field is set at most once.
@@ -107,13 +108,13 @@ struct HudActions {
   std::optional<double> couplingShare;
   /// "Frame the scene" pressed.
   bool frameScene = false;
-  /// The force arrow ticked on or off.
-  std::optional<bool> forceArrow;
+  /// The force arrow and contact points ticked on or off.
+  std::optional<bool> forceOverlay;
 
   /// Whether the user asked for anything.
   bool any() const noexcept {
     return grabObject || releaseObject || forceLayer || pointOffsetM || couplingShare || frameScene ||
-           forceArrow;
+           forceOverlay;
   }
 };
 
@@ -140,7 +141,7 @@ struct HudLayout {
   std::optional<HudRectPx> pointOffsetSlider;
   std::optional<HudRectPx> couplingSlider;
   std::optional<HudRectPx> frameButton;
-  std::optional<HudRectPx> forceArrowCheckbox;
+  std::optional<HudRectPx> forceOverlayCheckbox;
 };
 
 /// A pointer that replaces the one the GLFW backend reads, for one frame (tests,

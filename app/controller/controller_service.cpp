@@ -519,6 +519,10 @@ void ControllerService::frameUpdate(pb::FrameUpdate& update) {
     if (o.held) toProto(o.handle, *out.mutable_handle());
     toProto(o.forceWorld, *out.mutable_force_n());
     out.set_contacts(o.contacts);
+    out.mutable_contact_point_m()->Reserve(static_cast<int>(3 * o.contactSample.count));
+    for (const glm::vec3& p : o.contactSample.points()) {
+      for (int k = 0; k < 3; ++k) out.add_contact_point_m(p[k]);
+    }
     out.set_travel_share(o.travelShare);
     out.set_owner_peer(o.owner);
     if (o.shared) {

@@ -194,6 +194,7 @@ void HapticLoop::publish(FrameStatus status, std::uint64_t frame) noexcept {
     o.handle = o.held ? handles_[i].poseWorld : o.pose;
     o.forceWorld = f.contactForceWorld;
     o.contacts = f.contacts;
+    o.contactSample = f.contactSample;
     o.travelShare = outputs_.coherence.travelScale;
     o.shared = sharing_[i] != Sharing::No;
     if (o.shared) o.port = ports_[i].last();

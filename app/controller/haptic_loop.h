@@ -70,6 +70,7 @@ struct ObjectSnapshot {
   bool held = false;
   glm::dvec3 forceWorld{0.0};  ///< contact force, N
   std::uint32_t contacts = 0;
+  ContactSample contactSample;   ///< some of its contact points, world
   double travelShare = 1.0;      ///< MaxTravel over its upper bound
   bool shared = false;           ///< this peer integrates its own instance of it (type-2)
   SharedObjectPort::Frame port;  ///< its coupling to the other instances, when shared

@@ -214,7 +214,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
   Pose lastHandle;
   glm::dvec3 anchorLocal{0.0};  ///< the grabbed point, in the handle's frame
   bool useCache = options.staticCache;
-  bool showForceArrow = true;
+  bool showForceOverlay = true;
   FrameTally cached;
   FrameTally uncached;
   std::optional<double> firstFrameS;
@@ -257,6 +257,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     const double voxelM = state.parameters ? state.parameters->voxel_size_m() : 0.0;
     renderer.setProximityRange(static_cast<float>(kProximityRangeVoxels * std::max(voxelM, 1e-4)));
     std::vector<glm::vec3> shadow;
+    std::vector<glm::vec3> contactPoints;
     std::optional<render::ForceArrow> arrow;
     for (std::size_t i = 0; i < moving.size(); ++i) {
       const int k = controllerIndex[i];
@@ -267,8 +268,11 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
         renderer.setPose(i, movingPose[i]);
         renderer.setOtherInstance(i, net::furthestOtherInstance(o));
         const glm::dvec3 forceN(o.force_n().x(), o.force_n().y(), o.force_n().z());
-        if (showForceArrow && myGrabs.count(moving[i]) && glm::length(forceN) > 0.0)
+        if (showForceOverlay && myGrabs.count(moving[i]) && glm::length(forceN) > 0.0)
           arrow = render::ForceArrow{apply(movingPose[i], centreLocal[i]), forceN, 0.002};
+        for (int c = 0; showForceOverlay && c + 2 < o.contact_point_m_size(); c += 3)
+          contactPoints.emplace_back(o.contact_point_m(c), o.contact_point_m(c + 1),
+                                     o.contact_point_m(c + 2));
       }
       if (static_cast<std::size_t>(k) < state.proximity.size() && state.proximity[k]) {
         const pb::Proximity& p = *state.proximity[k];
@@ -287,6 +291,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       deviceGrabbed = true;
     }
     renderer.setForceArrow(arrow);
+    renderer.setContactPoints(contactPoints, static_cast<float>(voxelM));
 
     // the mouse: the HUD first, then a drag of a held part, else the eye
     const bool hudHasMouse = hud.wantsMouse();
@@ -354,7 +359,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
     model.renderFps = fpsSmoothed;
     model.passive = options.passive;
     model.message = state.error;
-    model.forceArrow = showForceArrow;
+    model.forceOverlay = showForceOverlay;
     if (state.loading) model.loading = HudLoading{state.loading->stage(), state.loading->fraction()};
     if (state.statistics) {
       const pb::Statistics& s = *state.statistics;
@@ -426,7 +431,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       if (actions.couplingShare) set.set_coupling_stiffness_share(*actions.couplingShare);
       if (set.ByteSizeLong() > 0) link.setParameters(set);
     }
-    if (actions.forceArrow) showForceArrow = *actions.forceArrow;
+    if (actions.forceOverlay) showForceOverlay = *actions.forceOverlay;
     if (actions.frameScene)
       camera.frame(renderer.sceneBounds(), static_cast<double>(fb.x) / std::max(1, fb.y));
 

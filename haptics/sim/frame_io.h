@@ -4,6 +4,7 @@
 /// a bitmask of what went wrong. The caller owns both and sizes them at load time
 /// (makeFrameOutputs), so that step() never allocates.
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <span>
@@ -63,6 +64,16 @@ struct FrameInputs {
   double previousStepS = 0.0;
 };
 
+/// Some of an object's contact points, for display: all of them while they fit, else a
+/// sample spread evenly over each pair's (the first pairs' when the room runs out).
+struct ContactSample {
+  static constexpr std::size_t kCapacity = 64;
+  std::array<glm::vec3, kCapacity> pointsWorld;  ///< m, at the frame's start
+  std::uint32_t count = 0;
+
+  std::span<const glm::vec3> points() const { return {pointsWorld.data(), count}; }
+};
+
 /// What happened to one moving object in the frame.
 struct ObjectFrame {
   glm::dvec3 contactForceWorld{0.0};   ///< sum over its pairs, N
@@ -73,6 +84,7 @@ struct ObjectFrame {
   double maxDepthM = 0.0;              ///< deepest tangent-plane depth of its contacts, m
   double maxTravelM = 0.0;             ///< MaxTravel this frame, m (infinite: no pair)
   bool travelLimited = false;          ///< MaxTravel held it back
+  ContactSample contactSample;         ///< of its points in the force layer, where it is the pointshell
 };
 
 /// Time-critical sampling in one frame, over all pairs.

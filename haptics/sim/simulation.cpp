@@ -163,6 +163,19 @@ std::uint32_t findContacts(const SimModel& model, SimWorkspace& ws, CoherenceFra
   return t.contacts;
 }
 
+/// Adds `contacts`' points in the force layer (`forceLayer` or below) to `sample`, spread
+/// evenly over them when there are more than its room.
+void sampleContacts(const Pointshell& shell, const Pose& shellWorld, std::span<const PointContact> contacts,
+                    std::uint8_t forceLayer, ContactSample& sample) {
+  const std::size_t picks = std::min(ContactSample::kCapacity - sample.count, contacts.size());
+  for (std::size_t k = 0; k < picks; ++k) {
+    const PointContact& c = contacts[k * contacts.size() / picks];
+    if (c.value > forceLayer) continue;
+    sample.pointsWorld[sample.count++] =
+        glm::vec3(apply(shellWorld, glm::dvec3(shell.positionsLocal[c.point])));
+  }
+}
+
 /// Paper §5.3: a frame that needed voxels still paged out moves nothing and sends no
 /// force; past kMaxSuspensionS of suspension in a row (by the caller's clock) the run stops.
 void suspendOrResume(SimWorkspace& ws, bool suspend, std::chrono::steady_clock::time_point now) {
@@ -237,9 +250,10 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     const double limitM = depthLimitM(params, model.voxmapOf(pair).grid().voxelSizeM);
     const DepthRowSink sink{std::span(ws.depthScratch.rows).subspan(rowCount),
                             limitM - ws.pairFrames[p].relativeTravelBoundM};
-    const PairWrench w = tangentPlaneWrench(
-        shellObject.shell, model.voxmapOf(pair), params, motionOf(model, state, pair.shellObject),
-        motionOf(model, state, pair.voxmapObject), std::span(ws.contacts.data(), found), &sink);
+    const BodyMotion shellMotion = motionOf(model, state, pair.shellObject);
+    const std::span<const PointContact> contacts(ws.contacts.data(), found);
+    const PairWrench w = tangentPlaneWrench(shellObject.shell, model.voxmapOf(pair), params, shellMotion,
+                                            motionOf(model, state, pair.voxmapObject), contacts, &sink);
     for (std::size_t r = rowCount; r < rowCount + w.depthRows; ++r) {
       DepthRow& row = ws.depthScratch.rows[r];
       row.limitM = limitM;
@@ -258,6 +272,7 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
     s.contacts += w.contactPoints;
     s.tested += tested;
     s.maxDepthM = std::max(s.maxDepthM, w.maxDepthM);
+    sampleContacts(shellObject.shell, shellMotion.poseWorld, contacts, params.forceLayer, s.contactSample);
     if (pair.voxmapObject != kStaticEnvironment) {
       ObjectFrame& v = outputs.objects[static_cast<std::size_t>(pair.voxmapObject)];
       v.contactForceWorld += w.forceOnVoxmapWorld;

@@ -29,6 +29,21 @@ using namespace std::chrono_literals;
 
 class ViewCommand : public CliTest {
 protected:
+  /// Keeps the test's screenshots in $VOXHAP_RENDER_TEST_PNG_DIR (as the render tests do),
+  /// named after the test, before its folder goes.
+  void TearDown() override {
+    const char* keep = std::getenv("VOXHAP_RENDER_TEST_PNG_DIR");
+    if (keep && *keep && std::filesystem::exists(dir_)) {
+      const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+      for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
+        if (entry.path().extension() != ".png") continue;
+        std::filesystem::copy_file(
+            entry.path(), std::filesystem::path(keep) / (test + "_" + entry.path().filename().string()),
+            std::filesystem::copy_options::overwrite_existing);
+      }
+    }
+    CliTest::TearDown();
+  }
   /// `voxhap ARGS` (a command with a window) under `xvfb-run -a`; its JSON summary (exit
   /// status checked).
   nlohmann::json underXvfb(const std::vector<std::string>& args) {
@@ -135,6 +150,7 @@ TEST_F(ViewCommand, ABoxIsWarmNearThePlateItRestsOnAndItsOwnBlueLiftedAway) {
   }));
   const glm::vec3 blue{0.1f, 0.2f, 0.9f};
   scene.objects[1].parts[0].baseColor = glm::vec4(blue, 1.0f);
+  scene.objects[0].parts[0].baseColor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);  // grey: white is for contacts
   writeGlbFile(scene, dir_ / "box-on-plate.glb");
   { std::ofstream(dir_ / "lift.txt") << "0 1 0 0 0 0 0 0\n0.3 1 0 0 0 0 0 0.02\n1000 1 0 0 0 0 0 0.02\n"; }
   const auto shoot = [this](const std::string& device, const std::string& png) {
@@ -169,6 +185,20 @@ TEST_F(ViewCommand, ABoxIsWarmNearThePlateItRestsOnAndItsOwnBlueLiftedAway) {
       << restingHue.x << " " << restingHue.y << " " << restingHue.z;
   EXPECT_GT(glm::dot(liftedHue, glm::normalize(blue)), glm::dot(liftedHue, red))
       << liftedHue.x << " " << liftedHue.y << " " << liftedHue.z;
+
+  // the contact points the controller sends, drawn white (unlit) at the box's foot: resting only
+  const auto whitePixelsUnderTheHud = [](const DecodedPng& png) {
+    int count = 0;
+    for (std::uint32_t y = 300; y < png.height; ++y) {
+      for (std::uint32_t x = 0; x < png.width; ++x) {
+        const std::array<int, 3> p = png.at(x, y);
+        count += std::min({p[0], p[1], p[2]}) >= 250 ? 1 : 0;
+      }
+    }
+    return count;
+  };
+  EXPECT_GT(whitePixelsUnderTheHud(decodePng(dir_ / "resting.png")), 0);
+  EXPECT_EQ(whitePixelsUnderTheHud(decodePng(dir_ / "lifted.png")), 0);
 }
 
 TEST_F(ViewCommand, APassiveViewConnectsToARunningControllerAndShowsItsScene) {

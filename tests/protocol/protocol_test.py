@@ -162,8 +162,20 @@ def check_subscribe(c):
     check(all(held[1:]), f"frame_update: the held ball has no handle in frames {nums} ({held})")
     turn = quat_angle(frames[0].objects[0].pose.orientation, frames[-1].objects[0].pose.orientation)
     check(turn > 1e-3, f"frame_update: the ball did not turn ({turn} rad)")
+    # the ball (r = 25 mm, centred on its pose's position) turns seated in its socket
+    for f in frames:
+        o = f.objects[0]
+        xyz = o.contact_point_m
+        check(len(xyz) % 3 == 0 and (o.contacts > 0) == (len(xyz) > 0) and len(xyz) <= 3 * min(o.contacts, 64),
+              f"frame_update: {o.contacts} contacts, {len(xyz)} contact point coordinates")
+        centre = o.pose.position_m
+        for i in range(0, len(xyz), 3):
+            r = math.dist(xyz[i:i + 3], (centre.x, centre.y, centre.z))
+            check(abs(r - 0.025) < 0.0015, f"frame_update: a contact point {r * 1000:.2f} mm from the ball's centre")
+    seated = sum(1 for f in frames if f.objects[0].contacts > 0)
+    check(seated > 0, "frame_update: the ball turned in its socket without a contact")
     ok(f"subscribe 100 Hz: {len(frames)} frame_updates, frames {nums[0]}..{nums[-1]} increasing, "
-       f"ball turned {math.degrees(turn):.1f} deg")
+       f"ball turned {math.degrees(turn):.1f} deg, contact points on its surface in {seated} frames")
     c.request("subscribe", pb.Subscribe(rate_hz=0), expect="done")
     # events already queued may still come; the stream must stop soon after
     deadline = time.monotonic() + 1.0

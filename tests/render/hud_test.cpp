@@ -281,24 +281,24 @@ TEST_F(HudTest, ClickingGrabReportsThatObjectOnce) {
   EXPECT_FALSE(after.any());
 }
 
-TEST_F(HudTest, ClickingTheForceArrowBoxTurnsItOffOnceAndOnAgain) {
+TEST_F(HudTest, ClickingTheForceBoxTurnsItOffOnceAndOnAgain) {
   Hud hud(window_);
   HudModel model = sampleModel();
   settle(hud, model);
-  ASSERT_TRUE(hud.layout().forceArrowCheckbox);
-  const HudRectPx box = *hud.layout().forceArrowCheckbox;
+  ASSERT_TRUE(hud.layout().forceOverlayCheckbox);
+  const HudRectPx box = *hud.layout().forceOverlayCheckbox;
   std::vector<HudActions> actions = click(hud, model, box.centerX(), box.centerY());
   int reported = 0;
   for (const HudActions& a : actions) {
-    if (!a.forceArrow) continue;
+    if (!a.forceOverlay) continue;
     ++reported;
-    EXPECT_FALSE(*a.forceArrow);  // it was on
+    EXPECT_FALSE(*a.forceOverlay);  // it was on
   }
   EXPECT_EQ(reported, 1);
-  model.forceArrow = false;  // the app keeps the choice
+  model.forceOverlay = false;  // the app keeps the choice
   actions = click(hud, model, box.centerX(), box.centerY());
-  EXPECT_TRUE(
-      std::any_of(actions.begin(), actions.end(), [](const HudActions& a) { return a.forceArrow == true; }));
+  EXPECT_TRUE(std::any_of(actions.begin(), actions.end(),
+                          [](const HudActions& a) { return a.forceOverlay == true; }));
 }
 
 TEST_F(HudTest, ClickingAHeldObjectReleasesIt) {

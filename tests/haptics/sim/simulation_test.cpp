@@ -150,6 +150,37 @@ TEST(Simulation, BoxRestsFlatOnAPlateWithNegligibleTorque) {
   EXPECT_LE(gap, 2.5 * kVoxel);
 }
 
+TEST(Simulation, TheContactSampleLiesUnderTheRestingBoxSpreadOverItsFoot) {
+  const Scene scene = boxOverPlate(0.0008);
+  // without geometrical awareness: every point of its foot in contact, not only its corners
+  const SimModel model = test::freeModel(scene, {"box"}, kVoxel, kGravity, false);
+  LocalSimulation sim(model);
+  runFree(sim, 1500, [](const SimState&) {});
+  const ObjectFrame& box = sim.object(0);
+  ASSERT_GT(box.contacts, ContactSample::kCapacity);
+  ASSERT_EQ(box.contactSample.count, ContactSample::kCapacity);
+  // the points are where the box was when the frame began
+  const double footZ =
+      test::lowestZ(scene.objects[1], sim.workspace.beforeStep[0].pose(model.objects[0].body));
+  glm::vec3 lo(1e9f);
+  glm::vec3 hi(-1e9f);
+  for (const glm::vec3& p : box.contactSample.points()) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  // the foot spans x 0.3 ± 10 mm, y −0.7 ± 10 mm; surface voxels' centres lie within half
+  // a voxel of it
+  const double halfM = 0.01 + 0.5 * kVoxel;
+  EXPECT_GT(lo.x, 0.0003 - halfM);
+  EXPECT_LT(hi.x, 0.0003 + halfM);
+  EXPECT_GT(lo.y, -0.0007 - halfM);
+  EXPECT_LT(hi.y, -0.0007 + halfM);
+  EXPECT_GT(hi.x - lo.x, 0.015) << "the sample is not spread over the foot";
+  EXPECT_GT(hi.y - lo.y, 0.015) << "the sample is not spread over the foot";
+  EXPECT_GT(lo.z, footZ - 0.5 * kVoxel);
+  EXPECT_LT(hi.z, footZ + 0.5 * kVoxel);
+}
+
 TEST(Simulation, GeometricalAwarenessRestsTheBoxAlikeWithFarFewerContacts) {
   const Scene scene = boxOverPlate(0.0008);
   double gap[2];
