@@ -220,8 +220,10 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
   std::optional<double> firstFrameS;
   std::optional<double> sceneShownS;
   std::optional<std::uint64_t> framesLeft;  // headless: counting down once the scene shows
-  std::uint64_t lastHapticFrames = 0;
-  Clock::time_point lastHapticAt = Clock::now();
+  // the haptic rate: frames counted between statistics at least 1 s apart by this clock
+  // (the first statistics only start the count: the controller may have run long before)
+  std::optional<std::uint64_t> lastHapticFrames;
+  Clock::time_point lastHapticAt;
   double hapticRateHz = 0.0;
   double fpsSmoothed = 0.0;
   view::LinkState state;
@@ -365,8 +367,8 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
       const pb::Statistics& s = *state.statistics;
       const Clock::time_point now = Clock::now();
       const double dt = std::chrono::duration<double>(now - lastHapticAt).count();
-      if (s.frames() > lastHapticFrames && dt > 0.2) {
-        hapticRateHz = static_cast<double>(s.frames() - lastHapticFrames) / dt;
+      if (!lastHapticFrames || (s.frames() > *lastHapticFrames && dt >= 1.0)) {
+        if (lastHapticFrames) hapticRateHz = static_cast<double>(s.frames() - *lastHapticFrames) / dt;
         lastHapticFrames = s.frames();
         lastHapticAt = now;
       }
