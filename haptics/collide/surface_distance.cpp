@@ -13,7 +13,7 @@ SurfaceDistance surfaceDistance(const Voxmap& voxmap, const glm::ivec3& ijkVoxel
   const double ownVoxels = own.distanceVoxels();
   // the point and the neighbours' centres in voxels from the own centre
   const glm::dvec3 point = (pointLocal - centre) / s;
-  SurfaceDistance best{(ownVoxels + glm::dot(point, ownOutward)) * s, ownOutward};
+  SurfaceDistance best{ownPlaneDistanceM(grid, ijkVoxel, own, pointLocal), ownOutward};
   for (int axis = 0; axis < 3; ++axis) {
     glm::ivec3 offset(0);
     offset[axis] = point[axis] < 0.0 ? -1 : 1;

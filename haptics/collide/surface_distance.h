@@ -18,6 +18,7 @@
 /// voxel. The four voxels beside on the diagonals too gave the same, at twice the frame cost
 /// of the seated ball's 9,600 contacts.
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "haptics/voxel/voxmap.h"
@@ -28,6 +29,14 @@ struct SurfaceDistance {
   double distanceM = 0.0;       ///< φ(p): positive outside, m
   glm::dvec3 outwardUnit{0.0};  ///< the normal of the plane that gave it, voxmap frame
 };
+
+/// φ at `pointLocal` (voxmap frame, m) by the plane `own` of voxel `ijkVoxel` alone:
+/// surfaceDistance starts from this value and never gives less.
+inline double ownPlaneDistanceM(const VoxelGrid& grid, const glm::ivec3& ijkVoxel, const SurfacePlane& own,
+                                const glm::dvec3& pointLocal) noexcept {
+  const glm::dvec3 point = (pointLocal - grid.voxelCentre(ijkVoxel)) / grid.voxelSizeM;
+  return (own.distanceVoxels() + glm::dot(point, own.outwardUnit())) * grid.voxelSizeM;
+}
 
 /// φ at `pointLocal` (voxmap frame, m), a point of voxel `ijkVoxel`, whose plane `own`
 /// is voxmap.surfacePlane(ijkVoxel).

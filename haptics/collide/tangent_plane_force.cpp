@@ -100,6 +100,15 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     if (planes && !plane && c.value > kValueFeature) continue;
     glm::dvec3 pushDirection;
     double depth = 0.0;
+    if (plane && !beforeContact) {
+      // the own plane bounds φ from below, so the depth from above: a point that can
+      // neither push nor limit the step needs no neighbours' planes
+      const double depthBoundM = params.surfaceContactM - ownPlaneDistanceM(grid, c.ijkVoxel, *plane, p);
+      if (depthBoundM <= 0.0 && (!sink || depthBoundM <= sink->minDepthM)) {
+        ++out.contactPoints;
+        continue;
+      }
+    }
     if (plane) {
       const SurfaceDistance phi = surfaceDistance(voxmap, c.ijkVoxel, *plane, p);
       pushDirection = -phi.outwardUnit;
