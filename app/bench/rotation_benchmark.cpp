@@ -1,6 +1,7 @@
 // `voxhap bench rotation`: the paper's ball-and-socket measure (§7): how long one full
 // turn of the ball in its socket takes when the user pushes it faster than MaxTravel lets
-// it go.
+// it go, for the 25 mm ball of the paper's text and the 12.5 mm one of its Table 1's point
+// counts (DESIGN §6).
 //
 // The ball's points are displaced half a voxel inward so that it seats fully. Its handle
 // always leads the ball by kLeadRad about the socket's x axis, through the ball's centre,
@@ -36,6 +37,8 @@ namespace voxhap::cli {
 namespace {
 
 constexpr double kDefaultSizesM[] = {0.35e-3, 0.15e-3, 0.07e-3, 0.035e-3};
+/// The built-in scenes turned, in the order of the rows.
+constexpr const char* kScenes[] = {"ball-and-socket", "small-ball-and-socket"};
 /// How far the handle leads the ball, rad: a user turning it steadily.
 constexpr double kLeadRad = 0.1;
 /// A turn not done in this many times its limit is given up (no rotation_s).
@@ -43,6 +46,8 @@ constexpr double kGiveUpLimits = 4.0;
 
 std::vector<BenchColumn> rotationColumns() {
   return {
+      {"scene", "scene", BenchStyle::Text},
+      {"ball_radius_m", "ball mm", BenchStyle::Millimetres, 1},
       {"voxel_size_m", "voxel mm", BenchStyle::Millimetres, 3},
       {"points", "points", BenchStyle::Count},
       {"rotation_s", "turn s", BenchStyle::Fixed, 3},
@@ -80,8 +85,8 @@ HandleInput handleAt(const glm::dvec3& centre, double angleRad, double rateRadPe
   return {pose, {glm::cross(omega, pose.position - centre), omega}};
 }
 
-void measureRow(const Scene& scene, double voxelM, const RotationArgs& args, Console& console,
-                const CacheOptions& cache, BenchTable& table, const std::string& label) {
+void measureRow(const std::string& sceneName, const Scene& scene, double voxelM, const RotationArgs& args,
+                Console& console, const CacheOptions& cache, BenchTable& table, const std::string& label) {
   SceneModelOptions options;
   options.staticVoxelSizeM = voxelM;
   options.pointSpacingM = voxelM;
@@ -125,6 +130,9 @@ void measureRow(const Scene& scene, double voxelM, const RotationArgs& args, Con
 
   const auto frames = static_cast<double>(computeUs.size());
   const std::size_t r = table.addRow();
+  const Bounds ballBounds = scene.find("ball")->bounds();
+  table.set(r, "scene", sceneName);
+  table.set(r, "ball_radius_m", 0.5 * (ballBounds.max.x - ballBounds.min.x));
   table.set(r, "voxel_size_m", voxelM);
   table.set(r, "points", static_cast<std::int64_t>(ball.shell.size()));
   if (turnedRad >= 2.0 * std::numbers::pi) table.set(r, "rotation_s", realTimeS);
@@ -147,15 +155,18 @@ void measureRow(const Scene& scene, double voxelM, const RotationArgs& args, Con
 BenchTable runRotation(const RotationArgs& args, Console& console) {
   const std::vector<double> sizes = voxelSizes(args);
   const CacheOptions cache = voxelCacheOptions(args.sim);
-  const Scene scene = loadScene("ball-and-socket", kDefaultSeed, console);
   BenchTable table("rotation", rotationColumns());
   table.extra["lead_rad"] = kLeadRad;
   table.extra["capacity"] = args.sim.capacity ? "fixed" : "measured online";
   table.extra["paper"] = {{"voxel_size_m", 0.35e-3}, {"rotation_s", 1.28}, {"mean_contacts", 250}};
-  for (std::size_t i = 0; i < sizes.size(); ++i) {
-    measureRow(scene, sizes[i], args, console, cache, table,
-               "rotation " + std::to_string(i + 1) + "/" + std::to_string(sizes.size()) + " " +
-                   fixed(sizes[i] * 1e3, 3) + " mm");
+  const std::size_t rows = std::size(kScenes) * sizes.size();
+  for (std::size_t k = 0; k < std::size(kScenes); ++k) {
+    const Scene scene = loadScene(kScenes[k], kDefaultSeed, console);
+    for (std::size_t i = 0; i < sizes.size(); ++i) {
+      measureRow(kScenes[k], scene, sizes[i], args, console, cache, table,
+                 "rotation " + std::to_string(k * sizes.size() + i + 1) + "/" + std::to_string(rows) + " " +
+                     kScenes[k] + " " + fixed(sizes[i] * 1e3, 3) + " mm");
+    }
   }
   return table;
 }
@@ -169,26 +180,28 @@ Benchmark rotationBenchmark() {
   b.usage = "[--quick] [--voxel-size LENGTH …] [--capacity N] [--cache-dir DIR] [--no-cache]";
   b.description =
       "The paper's ball-and-socket measure (§7: 1.28 s for one turn at 0.35 mm, about 250\n"
-      "points in contact). The ball's points are displaced half a voxel inward so that it\n"
-      "seats; its handle always leads it by 0.1 rad about the x axis, so the user asks for\n"
-      "more speed than MaxTravel allows in every frame.\n\n"
+      "points in contact), for both built-in balls: ball-and-socket, the 25 mm ball of the\n"
+      "paper's text, and small-ball-and-socket, the 12.5 mm one whose point counts match its\n"
+      "Table 1. The ball's points are displaced half a voxel inward so that it seats; its\n"
+      "handle always leads it by 0.1 rad about the x axis, so the user asks for more speed\n"
+      "than MaxTravel allows in every frame.\n\n"
       "Capacity is measured online from the real cost of each point test (--capacity N fixes\n"
       "it) and the frame budget is enforced in real time: rotation_s adds up max(1 ms, the\n"
       "frame's compute) over the turn, so overrunning frames stretch it. limit_s is the turn at\n"
-      "MaxTravel = s/2 throughout (0.898 s at 0.35 mm for the paper's 25 mm lever arm). A\n"
-      "frame with more points in contact than the capacity is a missed deadline: the first of\n"
-      "a run moves nothing, the rest run at full MaxTravel however long they take (their\n"
-      "compute stretches the turn). A turn not done within 4 limits (+1 s) is given up:\n"
-      "rotation_s is empty and turned_rad says how far it got.\n\n"
-      "Rows: voxel sizes 0.35, 0.15, 0.07 and 0.035 mm (the last needs about 10 million\n"
-      "points and minutes to voxelize).\n\n"
+      "MaxTravel = s/2 throughout (0.898 s at 0.35 mm for the paper's 25 mm lever arm, 0.449 s\n"
+      "for 12.5 mm). A frame with more points in contact than the capacity is a missed\n"
+      "deadline: the first of a run moves nothing, the rest run at full MaxTravel however long\n"
+      "they take (their compute stretches the turn). A turn not done within 4 limits (+1 s) is\n"
+      "given up: rotation_s is empty and turned_rad says how far it got.\n\n"
+      "Rows: each ball at voxel sizes 0.35, 0.15, 0.07 and 0.035 mm (the last needs about 10\n"
+      "million points for the 25 mm ball and minutes to voxelize).\n\n"
       "Examples:\n"
       "  voxhap bench rotation --quick\n"
       "  voxhap bench rotation --voxel-size 0.35mm --voxel-size 0.15mm --json\n"
       "  voxhap bench rotation --capacity 100000 --csv rotation.csv";
   b.addOptions = [](CLI::App& command) -> BenchRunFn {
     auto args = std::make_shared<RotationArgs>();
-    command.add_flag("--quick", args->quick, "only 0.35 mm, for CI");
+    command.add_flag("--quick", args->quick, "only 0.35 mm (both balls), for CI");
     addLengthListOption(command, "--voxel-size", args->voxelSizesM,
                         "a voxel size to measure (repeatable; default the four above)");
     addSimOptions(command, args->sim, {SimOption::Capacity, SimOption::Cache});
@@ -199,6 +212,7 @@ Benchmark rotationBenchmark() {
     spec.title = "Ball turned once in its socket";
     spec.xKey = "voxel_size_m";
     spec.yKey = "rotation_s";
+    spec.seriesKey = "scene";
     spec.xLabel = "voxel size, m";
     spec.yLabel = "one turn, s (real time)";
     spec.logX = true;

@@ -216,8 +216,9 @@ std::unique_ptr<CommandTree> voxhapCommands() {
   help.description =
       "Engineers at several sites grab parts of a CAD assembly (glTF) and feel them collide at\n"
       "1 kHz. SCENE arguments are a .gltf/.glb file or a built-in scene name:\n"
-      "ball-and-socket, peg-in-hole, landing-gear, landing-gear-crew (the gear with a spare\n"
-      "actuator and hose, for three users; the gears are generated on first use and cached).\n\n"
+      "ball-and-socket, small-ball-and-socket (half the size: a 12.5 mm ball), peg-in-hole,\n"
+      "landing-gear, landing-gear-crew (the gear with a spare actuator and hose, for three\n"
+      "users; the gears are generated on first use and cached).\n\n"
       "Examples:\n"
       "  voxhap demo\n"
       "  voxhap bench table1\n"

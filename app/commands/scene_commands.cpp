@@ -109,7 +109,7 @@ void addSceneCommands(CommandTree& tree) {
 
   CommandHelp generate;
   generate.summary =
-      "Write a built-in scene as .glb (ball-and-socket, peg-in-hole, landing-gear, landing-gear-crew).";
+      "Write a built-in scene as .glb (ball-and-socket, small-ball-and-socket, peg-in-hole, landing-gear…).";
   generate.usage = "voxhap scene generate NAME [-o FILE] [--seed N] [--json]";
   generate.description =
       "Generates a built-in scene procedurally and writes it atomically as binary glTF.\n"

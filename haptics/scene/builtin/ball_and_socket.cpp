@@ -1,7 +1,8 @@
 // Ball-and-socket: the paper's first benchmark (DESIGN §6). A ball of radius 25 mm
-// (2048 triangles) sits in a socket whose spherical cavity has the same radius and the same
-// centre, so the two surfaces mate; the cavity wraps 35° past the ball's equator, so the
-// ball is captured and can only turn in place. Ball centre at the origin, z up, metres.
+// (2048 triangles; every length below scales with the radius asked for) sits in a socket whose spherical
+// cavity has the same radius and the same centre, so the two surfaces mate; the cavity wraps 35° past the
+// ball's equator, so the ball is captured and can only turn in place. Ball centre at the origin, z up,
+// metres.
 //
 // Both polyhedra have their vertices on the 25 mm sphere and their faces inside it (by at
 // most 0.10 mm for either), so the ball's vertices poke through the cavity's facets by up
@@ -15,7 +16,6 @@
 namespace voxhap {
 namespace {
 
-constexpr double kBallRadiusM = 0.025;
 constexpr int kBallSubdivisions = 4;  // 8·4^4 = 2048 triangles
 constexpr double kSocketOuterRadiusM = 0.040;
 constexpr double kSocketBottomDepthM = 0.040;  // bottom face 15 mm below the cavity's pole
@@ -29,21 +29,22 @@ constexpr double kBallPointOffsetM = -0.0005;
 
 }  // namespace
 
-Scene makeBallAndSocket() {
+Scene makeBallAndSocket(double ballRadiusM) {
   const glm::dmat4 identity(1.0);
+  const double scale = ballRadiusM / kBallAndSocketRadiusM;
   Scene scene;
   scene.sourceName = "ball-and-socket";
 
   TriangleMesh ballMesh;
-  appendGeodesicSphere(ballMesh, identity, kBallRadiusM, kBallSubdivisions);
+  appendGeodesicSphere(ballMesh, identity, ballRadiusM, kBallSubdivisions);
   SceneObject ball;
   ball.name = "ball";
   ball.settings.role = ObjectRole::Dynamic;
-  ball.settings.pointOffsetM = kBallPointOffsetM;
+  ball.settings.pointOffsetM = kBallPointOffsetM * scale;
   ball.parts.push_back(makePart("ball", glm::vec4(0.78f, 0.80f, 0.84f, 1.0f), std::move(ballMesh)));
 
   TriangleMesh socketMesh;
-  const SocketSpec socketSpec{kBallRadiusM, kSocketOuterRadiusM, kSocketBottomDepthM,
+  const SocketSpec socketSpec{ballRadiusM, kSocketOuterRadiusM * scale, kSocketBottomDepthM * scale,
                               kOpeningAboveEquatorDeg * std::numbers::pi / 180.0};
   appendSphericalSocket(socketMesh, identity, socketSpec, kSocketSegments, kSocketCavityRings);
   SceneObject socket;

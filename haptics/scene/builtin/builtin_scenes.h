@@ -15,9 +15,14 @@
 
 namespace voxhap {
 
-/// Ball (radius 25 mm, 2048 triangles, dynamic) seated in a socket (≈ 2,176
-/// triangles, static) whose spherical cavity has the ball's radius.
-Scene makeBallAndSocket();
+/// The paper's ball radius (§7), m.
+inline constexpr double kBallAndSocketRadiusM = 0.025;
+
+/// Ball (radius `ballRadiusM`, 2048 triangles, dynamic) seated in a socket (≈ 2,176
+/// triangles, static) whose spherical cavity has the ball's radius; every length scales
+/// with the radius. The paper's text gives 25 mm (`ball-and-socket`), its Table 1's point
+/// counts are those of 12.5 mm (`small-ball-and-socket`, DESIGN §6).
+Scene makeBallAndSocket(double ballRadiusM = kBallAndSocketRadiusM);
 
 /// A peg (dynamic) above a block (static) whose hole leaves ≈ 0.2 mm of radial
 /// clearance, axes aligned, the peg's tip at the hole's mouth.

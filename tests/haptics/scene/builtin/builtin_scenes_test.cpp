@@ -278,9 +278,10 @@ const Scene& landingGear(std::uint64_t seed) {
 // ---------------------------------------------------------------------------------------
 // Names and dispatch
 
-TEST(BuiltinScenes, ListsTheFourScenes) {
-  EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"ball-and-socket", "peg-in-hole", "landing-gear",
-                                                           "landing-gear-crew"}));
+TEST(BuiltinScenes, ListsTheFiveScenes) {
+  EXPECT_EQ(builtinSceneNames(),
+            (std::vector<std::string>{"ball-and-socket", "small-ball-and-socket", "peg-in-hole",
+                                      "landing-gear", "landing-gear-crew"}));
 }
 
 TEST(BuiltinScenes, UnknownNameThrowsAnErrorListingTheKnownOnes) {
@@ -298,27 +299,34 @@ TEST(BuiltinScenes, UnknownNameThrowsAnErrorListingTheKnownOnes) {
 
 TEST(BuiltinScenes, DispatchesByNameAndRecordsTheGeneratorName) {
   EXPECT_EQ(makeBuiltinScene("ball-and-socket", 0).sourceName, "ball-and-socket");
+  EXPECT_EQ(makeBuiltinScene("small-ball-and-socket", 0).sourceName, "small-ball-and-socket");
   EXPECT_EQ(makeBuiltinScene("peg-in-hole", 0).sourceName, "peg-in-hole");
 }
 
 // ---------------------------------------------------------------------------------------
 // Ball and socket
 
-TEST(BallAndSocket, BallIsA25MmDynamicSphereOf2048Triangles) {
-  const Scene scene = makeBallAndSocket();
+// the paper's 25 mm ball and the 12.5 mm one of its Table 1: every length scales
+class BallAndSocket : public ::testing::TestWithParam<double> {};
+
+TEST_P(BallAndSocket, BallIsADynamicSphereOf2048Triangles) {
+  const double r = GetParam();
+  const Scene scene = makeBallAndSocket(r);
   const SceneObject* ball = scene.find("ball");
   ASSERT_NE(ball, nullptr);
   EXPECT_EQ(ball->settings.role, ObjectRole::Dynamic);
   EXPECT_EQ(ball->triangleCount(), 2048u);
+  EXPECT_DOUBLE_EQ(ball->settings.pointOffsetM.value_or(0.0), -0.02 * r);  // 0.5 mm inward at 25 mm
   for (const Part& part : ball->parts) {
     for (const glm::vec3& p : part.mesh.positionsWorld) {
-      EXPECT_NEAR(glm::length(glm::dvec3(p)), 0.025, 1e-8);
+      EXPECT_NEAR(glm::length(glm::dvec3(p)), r, 1e-8);
     }
   }
 }
 
-TEST(BallAndSocket, SocketCavityMatesWithTheBallAndCapturesIt) {
-  const Scene scene = makeBallAndSocket();
+TEST_P(BallAndSocket, SocketCavityMatesWithTheBallAndCapturesIt) {
+  const double r = GetParam();
+  const Scene scene = makeBallAndSocket(r);
   const SceneObject* socket = scene.find("socket");
   ASSERT_NE(socket, nullptr);
   EXPECT_EQ(socket->settings.role, ObjectRole::Static);
@@ -327,9 +335,9 @@ TEST(BallAndSocket, SocketCavityMatesWithTheBallAndCapturesIt) {
   std::size_t cavityVertices = 0;
   for (const Part& part : socket->parts) {
     for (const glm::vec3& p : part.mesh.positionsWorld) {
-      const double r = glm::length(glm::dvec3(p));
-      if (r < 0.030) {
-        EXPECT_NEAR(r, 0.025, 1e-8);
+      const double d = glm::length(glm::dvec3(p));
+      if (d < 1.2 * r) {
+        EXPECT_NEAR(d, r, 1e-8);
         ++cavityVertices;
       }
     }
@@ -338,8 +346,8 @@ TEST(BallAndSocket, SocketCavityMatesWithTheBallAndCapturesIt) {
   // the socket wraps past the equator: its top face is above the ball's centre and the
   // opening is narrower than the ball
   const Bounds b = socket->bounds();
-  EXPECT_GT(b.max.z, 0.025 * std::sin(30.0 * kPi / 180.0));
-  EXPECT_LT(b.max.z, 0.025 * std::sin(45.0 * kPi / 180.0));
+  EXPECT_GT(b.max.z, r * std::sin(30.0 * kPi / 180.0));
+  EXPECT_LT(b.max.z, r * std::sin(45.0 * kPi / 180.0));
   double openingRadius = 1.0;
   for (const Part& part : socket->parts) {
     for (const glm::vec3& p : part.mesh.positionsWorld) {
@@ -348,11 +356,20 @@ TEST(BallAndSocket, SocketCavityMatesWithTheBallAndCapturesIt) {
       }
     }
   }
-  EXPECT_LT(openingRadius, 0.025 - 0.003);
+  EXPECT_LT(openingRadius, 0.88 * r);
 }
 
-TEST(BallAndSocket, EveryPartIsClosedAndOutward) {
-  expectEveryPartClosedAndOutward(makeBallAndSocket());
+TEST_P(BallAndSocket, EveryPartIsClosedAndOutward) {
+  expectEveryPartClosedAndOutward(makeBallAndSocket(GetParam()));
+}
+
+INSTANTIATE_TEST_SUITE_P(Radius, BallAndSocket, ::testing::Values(0.025, 0.0125));
+
+TEST(BuiltinScenes, TheSmallBallAndSocketIsHalfTheSize) {
+  const Bounds small = makeBuiltinScene("small-ball-and-socket", 0).bounds();
+  const Bounds paper = makeBuiltinScene("ball-and-socket", 0).bounds();
+  EXPECT_NEAR(small.max.x, 0.5 * paper.max.x, 1e-7);
+  EXPECT_NEAR(small.min.z, 0.5 * paper.min.z, 1e-7);
 }
 
 // ---------------------------------------------------------------------------------------
