@@ -500,10 +500,7 @@ void ControllerService::proximity(const pb::GetProximity& request, pb::ServerMes
   out.set_frame(s.frame);
   out.set_voxel_size_m(result.staticVoxelSizeM);
   out.mutable_vertex_distance_m()->Add(result.vertexDistanceM.begin(), result.vertexDistanceM.end());
-  out.mutable_near_voxel_centre_m()->Reserve(static_cast<int>(3 * result.nearStaticVoxelsWorld.size()));
-  for (const glm::dvec3& c : result.nearStaticVoxelsWorld) {
-    for (int k = 0; k < 3; ++k) out.add_near_voxel_centre_m(static_cast<float>(c[k]));
-  }
+  net::appendXyz(result.nearStaticVoxelsWorld, *out.mutable_near_voxel_centre_m());
 }
 
 void ControllerService::frameUpdate(pb::FrameUpdate& update) {
@@ -519,10 +516,7 @@ void ControllerService::frameUpdate(pb::FrameUpdate& update) {
     if (o.held) toProto(o.handle, *out.mutable_handle());
     toProto(o.forceWorld, *out.mutable_force_n());
     out.set_contacts(o.contacts);
-    out.mutable_contact_point_m()->Reserve(static_cast<int>(3 * o.contactSample.count));
-    for (const glm::vec3& p : o.contactSample.points()) {
-      for (int k = 0; k < 3; ++k) out.add_contact_point_m(p[k]);
-    }
+    net::appendXyz(o.contactSample.points(), *out.mutable_contact_point_m());
     out.set_travel_share(o.travelShare);
     out.set_owner_peer(o.owner);
     if (o.shared) {

@@ -272,9 +272,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
         const glm::dvec3 forceN(o.force_n().x(), o.force_n().y(), o.force_n().z());
         if (showForceOverlay && myGrabs.count(moving[i]) && glm::length(forceN) > 0.0)
           arrow = render::ForceArrow{apply(movingPose[i], centreLocal[i]), forceN, 0.002};
-        for (int c = 0; showForceOverlay && c + 2 < o.contact_point_m_size(); c += 3)
-          contactPoints.emplace_back(o.contact_point_m(c), o.contact_point_m(c + 1),
-                                     o.contact_point_m(c + 2));
+        if (showForceOverlay) net::appendPoints(o.contact_point_m(), contactPoints);
       }
       if (static_cast<std::size_t>(k) < state.proximity.size() && state.proximity[k]) {
         const pb::Proximity& p = *state.proximity[k];
@@ -282,9 +280,7 @@ void runView(const ViewOptions& options, Console& console, std::ostream& out) {
           renderer.setProximity(
               i, {p.vertex_distance_m().data(), static_cast<std::size_t>(p.vertex_distance_m_size())});
         }
-        for (int c = 0; c + 2 < p.near_voxel_centre_m_size(); c += 3)
-          shadow.emplace_back(p.near_voxel_centre_m(c), p.near_voxel_centre_m(c + 1),
-                              p.near_voxel_centre_m(c + 2));
+        net::appendPoints(p.near_voxel_centre_m(), shadow);
       }
     }
     renderer.setShadowVoxels(shadow, static_cast<float>(voxelM));

@@ -1,7 +1,9 @@
 #pragma once
 /// The engine's vectors and poses as the front-end protocol's messages, and back.
 
+#include <iterator>
 #include <optional>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -24,6 +26,20 @@ inline void toProto(const Pose& pose, pb::Pose& out) {
   out.mutable_orientation()->set_x(pose.orientation.x);
   out.mutable_orientation()->set_y(pose.orientation.y);
   out.mutable_orientation()->set_z(pose.orientation.z);
+}
+
+/// Points as x y z in turn in a repeated float field (contact points, voxel centres), m.
+template <typename Points>
+void appendXyz(const Points& points, google::protobuf::RepeatedField<float>& out) {
+  out.Reserve(out.size() + 3 * static_cast<int>(std::size(points)));
+  for (const auto& p : points) {
+    for (int k = 0; k < 3; ++k) out.Add(static_cast<float>(p[k]));
+  }
+}
+
+/// Back: every whole x y z of `xyz`, appended to `out`.
+inline void appendPoints(const google::protobuf::RepeatedField<float>& xyz, std::vector<glm::vec3>& out) {
+  for (int c = 0; c + 2 < xyz.size(); c += 3) out.emplace_back(xyz[c], xyz[c + 1], xyz[c + 2]);
 }
 
 /// The pose as given: not checked for finiteness or a unit quaternion.
