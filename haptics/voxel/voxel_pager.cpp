@@ -116,14 +116,19 @@ void VoxelPager::request(const glm::ivec3& loChunk, const glm::ivec3& hiChunk) n
 }
 
 void VoxelPager::makeResident(const glm::ivec3& loChunk, const glm::ivec3& hiChunk) {
-  // through the ring, as the haptic thread asks, then wait until the pager has served it
-  while (ringHead_.load() - ringTail_.load() >= kRingSize) std::this_thread::sleep_for(kIdle);
+  // through the ring, as the haptic thread asks, then wait until the pager has served it;
+  // while waiting, frames begin: the pager may be taking back a slot, which waits for the
+  // frame reader's quiescent point (no frame reads the voxmap yet)
+  const auto waitWhile = [this](auto pending) {
+    while (pending()) {
+      beginFrame();
+      std::this_thread::sleep_for(kIdle);
+    }
+  };
+  waitWhile([this] { return ringHead_.load() - ringTail_.load(std::memory_order_acquire) >= kRingSize; });
   request(loChunk, hiChunk);
   const std::uint64_t asked = ringHead_.load();
-  while (ringTail_.load(std::memory_order_acquire) < asked) {
-    beginFrame();  // no frame reads the voxmap yet: the grace of slots taken back is a frame
-    std::this_thread::sleep_for(kIdle);
-  }
+  waitWhile([this, asked] { return ringTail_.load(std::memory_order_acquire) < asked; });
 }
 
 void VoxelPager::run() {

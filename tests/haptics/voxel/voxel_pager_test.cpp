@@ -4,8 +4,11 @@
 #include "haptics/voxel/voxel_pager.h"
 
 #include <atomic>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <random>
 #include <thread>
 
@@ -262,6 +265,27 @@ TEST_F(VoxelPagerTest, ReadersAreBoundedAndTheirPlacesComeBack) {
     VoxelPager::ReadSection section(again);
     EXPECT_EQ(p.voxmap.word(voxelOf(mixed_[0], 0)), Voxmap::kMissingWord);  // nothing asked for yet
   }
+}
+
+TEST_F(VoxelPagerTest, MakeResidentBehindAFullRingLetsThePagerTakeASlotBack) {
+  // a CI run once hung here: the ring full, the pager taking a slot back and waiting for
+  // the frame reader's quiescent point, makeResident waiting for room in the ring
+  constexpr std::size_t kSlots = 4;
+  PagedCopy p = pagedCopy(whole_, kSlots);
+  for (std::size_t k = 0; k < kSlots; ++k) p.pager->makeResident(mixed_[k], mixed_[k]);
+  for (std::uint32_t tick = 0; tick <= VoxelPager::kInUseTicks; ++tick) p.pager->beginFrame();
+  // the first request takes a slot back, which waits for the next beginFrame(): the rest fill the ring
+  while (p.pager->requestsDropped() == 0) p.pager->request(mixed_[kSlots], mixed_[kSlots]);
+  auto served =
+      std::async(std::launch::async, [&] { p.pager->makeResident(mixed_[kSlots + 1], mixed_[kSlots + 1]); });
+  if (served.wait_for(std::chrono::seconds(60)) != std::future_status::ready) {
+    std::fputs("makeResident still waits after 60 s: the pager and the frame thread wait for each other\n",
+               stderr);
+    std::abort();  // a test that waits for ever would take ctest's whole timeout
+  }
+  EXPECT_TRUE(resident(p.voxmap, whole_, mixed_[kSlots]));
+  EXPECT_TRUE(resident(p.voxmap, whole_, mixed_[kSlots + 1]));
+  EXPECT_EQ(p.pager->slotsTakenBack(), 2u);
 }
 
 TEST_F(VoxelPagerTest, ReadersRacingThePagerReadTheWholeVoxmapsWordsOrMissing) {
