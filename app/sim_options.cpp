@@ -28,6 +28,23 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
                         "overrides the scene's point_offset of each object",
                         LengthSign::Any);
         break;
+      case SimOption::ForceLayerOf:
+        addRepeatedOption(command, "--force-layer-of", "OBJECT=N",
+                          "the force layer (voxel value N, 1 … 255) of moving OBJECT's pairs, its own "
+                          "instead of the session's (a mating part, paper §3.2); overrides the scene's "
+                          "force_layer; repeat for more objects",
+                          [&o](const std::string& text) {
+                            const std::size_t equals = text.rfind('=');
+                            if (equals == std::string::npos || equals == 0)
+                              throw UsageError("--force-layer-of wants OBJECT=N, not '" + text + "'");
+                            const std::uint64_t layer =
+                                parseUnsigned(text.substr(equals + 1), "force-layer-of");
+                            if (layer < 1 || layer > 255)
+                              throw UsageError("--force-layer-of wants a force layer of 1 … 255, not " +
+                                               std::to_string(layer));
+                            o.forceLayerOf[text.substr(0, equals)] = static_cast<std::uint8_t>(layer);
+                          });
+        break;
       case SimOption::PointLayer:
         addParsedOption(command, "--point-layer", "K",
                         "take points from the free-space layer K voxels out (0 … 8; collision offset)",
@@ -111,6 +128,7 @@ SceneModelOptions sceneModelOptions(const SimOptions& o, Console& console, doubl
   options.pointSpacingM = o.pointSpacingM.value_or(defaultPointSpacingM.value_or(options.staticVoxelSizeM));
   if (o.pointOffsetM) options.pointDisplacementM = *o.pointOffsetM;
   if (o.pointLayer) options.pointFreeLayer = *o.pointLayer;
+  options.forceLayerOf = o.forceLayerOf;
   options.sim.geometricalAwareness = !o.noAwareness;
   options.sim.preContactDamping = o.preContactDamping;
   if (!o.paperContact) {

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -25,12 +26,13 @@ namespace voxhap::cli {
 
 /// The shared options as given; empty or false when not.
 struct SimOptions {
-  std::optional<double> voxelSizeM;       ///< --voxel-size: of the static voxmap, m (> 0)
-  std::optional<double> pointSpacingM;    ///< --point-spacing: of the moving objects' points, m (> 0)
-  std::optional<double> pointOffsetM;     ///< --point-offset: along each point's normal, m; < 0 inward
-  std::optional<int> pointLayer;          ///< --point-layer: free-space layer of the points, voxels
-  bool noAwareness = false;               ///< --no-awareness: no geometrical awareness
-  bool preContactDamping = false;         ///< --pre-contact-damping
+  std::optional<double> voxelSizeM;     ///< --voxel-size: of the static voxmap, m (> 0)
+  std::optional<double> pointSpacingM;  ///< --point-spacing: of the moving objects' points, m (> 0)
+  std::optional<double> pointOffsetM;   ///< --point-offset: along each point's normal, m; < 0 inward
+  std::optional<int> pointLayer;        ///< --point-layer: free-space layer of the points, voxels
+  std::map<std::string, std::uint8_t> forceLayerOf;  ///< --force-layer-of OBJECT=N, by object
+  bool noAwareness = false;                          ///< --no-awareness: no geometrical awareness
+  bool preContactDamping = false;                    ///< --pre-contact-damping
   bool paperContact = false;              ///< --paper-contact: the paper's voxel planes, not surface planes
   bool bruteForce = false;                ///< --brute-force: every point every frame
   bool noDrifting = false;                ///< --no-drifting: no point drifting
@@ -48,6 +50,7 @@ enum class SimOption {
   VoxelSize,
   PointSpacing,
   PointOffset,
+  ForceLayerOf,
   PointLayer,
   NoAwareness,
   PreContactDamping,

@@ -8,8 +8,8 @@ namespace voxhap::cli {
 void addControllerRunOptions(CLI::App& command, ControllerRunArgs& args) {
   addSimOptions(
       command, args.sim,
-      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::PaperContact,
-       SimOption::Capacity, SimOption::VoxelMemory, SimOption::DeviceProfile});
+      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::ForceLayerOf,
+       SimOption::PaperContact, SimOption::Capacity, SimOption::VoxelMemory, SimOption::DeviceProfile});
   command.get_option("--voxel-size")
       ->description("voxel size of the static scene (default 2.5mm, as the demo)");
   command.get_option("--point-spacing")->description("point spacing of the moving objects (default 1mm)");

@@ -78,6 +78,7 @@ nlohmann::ordered_json sceneSummaryJson(const Scene& scene) {
                                     {"degenerate_triangles_dropped", degenerate}};
     if (object.settings.densityKgPerM3) entry["density_kg_per_m3"] = *object.settings.densityKgPerM3;
     if (object.settings.pointOffsetM) entry["point_offset_m"] = *object.settings.pointOffsetM;
+    if (object.settings.forceLayer) entry["force_layer"] = *object.settings.forceLayer;
     entry["parts"] = parts;
     objects.push_back(entry);
   }

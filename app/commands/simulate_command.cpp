@@ -183,11 +183,12 @@ void addSimulateCommand(CommandTree& tree) {
                     "motion script: one for all moving objects or one per --move",
                     [&scripts = args->scripts](const std::string& file) { scripts.push_back(file); });
   SimOptions& sim = args->sim;
-  addSimOptions(command, sim,
-                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::PointLayer,
-                 SimOption::NoAwareness, SimOption::PreContactDamping, SimOption::PaperContact,
-                 SimOption::Capacity, SimOption::VoxelMemory, SimOption::BruteForce, SimOption::NoDrifting,
-                 SimOption::DeviceProfile, SimOption::Duration});
+  addSimOptions(
+      command, sim,
+      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::ForceLayerOf,
+       SimOption::PointLayer, SimOption::NoAwareness, SimOption::PreContactDamping, SimOption::PaperContact,
+       SimOption::Capacity, SimOption::VoxelMemory, SimOption::BruteForce, SimOption::NoDrifting,
+       SimOption::DeviceProfile, SimOption::Duration});
   command.get_option("--voxel-size")
       ->description("voxel size of the static scene, e.g. 0.35mm (default 1mm)");
   command.get_option("--duration")->description("simulated time (default: the longest script)");

@@ -128,9 +128,10 @@ void addViewCommand(CommandTree& tree) {
   command.add_option("--device", args->device, "grab the first moving part with this device once loaded")
       ->type_name("script:FILE|hand:FILE|spacemouse");
   SimOptions& sim = args->sim;
-  addSimOptions(command, sim,
-                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset,
-                 SimOption::PaperContact, SimOption::Capacity, SimOption::DeviceProfile});
+  addSimOptions(
+      command, sim,
+      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::ForceLayerOf,
+       SimOption::PaperContact, SimOption::Capacity, SimOption::DeviceProfile});
   command.add_flag("--passive", args->passive, "see, never grab or change anything");
   command.add_flag("--no-static-cache", args->noCache,
                    "draw the static parts every frame (no FlyThru cache)");

@@ -71,6 +71,7 @@ Digest128 sceneHash(const Scene& scene, const std::vector<std::string>& moving) 
     hash.add(static_cast<std::uint32_t>(object.settings.role));
     hash.addDouble(object.settings.densityKgPerM3.value_or(0.0));  // 0: the engine's default
     hash.addDouble(object.settings.pointOffsetM.value_or(0.0));
+    hash.add(std::uint32_t{object.settings.forceLayer.value_or(0)});  // 0: the session's
     hash.add(static_cast<std::uint64_t>(object.parts.size()));
     for (const Part& part : object.parts) {
       hash.addArray(std::span<const glm::vec3>(part.mesh.positionsWorld));

@@ -243,6 +243,12 @@ std::optional<NodeSettings> readNodeSettings(const tinygltf::Node& node, const s
         throw Error(fieldWhere + " must be a length of at most 1 m either way (metres)");
       }
       result.settings.pointOffsetM = offsetM;
+    } else if (key == "force_layer") {
+      const double layer = field.IsNumber() ? field.GetNumberAsDouble() : 0.0;
+      if (!(layer >= 1.0 && layer <= 255.0) || layer != std::floor(layer)) {
+        throw Error(fieldWhere + " must be a whole number of voxel layers, 1 … 255");
+      }
+      result.settings.forceLayer = static_cast<std::uint8_t>(layer);
     } else {
       warnings.push_back(fieldWhere + " is not a Voxhap setting; ignored");
     }

@@ -6,12 +6,13 @@
 /// `extras` carry Voxhap settings:
 ///
 ///     "extras": {"voxhap": {"role": "dynamic", "object": "actuator", "density": 7800,
-///                           "point_offset": -0.0005}}
+///                           "point_offset": -0.0005, "force_layer": 3}}
 ///
 /// `role` is "static" (default) or "dynamic"; `object` names the logical object
 /// (nodes naming the same object merge into it; default: that node's name);
 /// `density` is in kg/m³; `point_offset` moves the object's points along their
-/// normals, in metres, negative inward (ObjectSettings::pointOffsetM). A mesh node with
+/// normals, in metres, negative inward (ObjectSettings::pointOffsetM); `force_layer` is
+/// the force layer of the object's pairs when it moves (ObjectSettings::forceLayer). A mesh node with
 /// no such node above it is a static object of its own. A node with no mesh and no such
 /// settings, on it or above it, that holds parts is a `SceneGroup` (a CAD sub-assembly):
 /// its name may be moved as one object (object_selection.h). Objects, then groups, that

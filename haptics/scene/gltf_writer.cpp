@@ -73,6 +73,7 @@ tinygltf::Value objectExtras(const SceneObject& object) {
   voxhap["role"] = tinygltf::Value(std::string(roleName(object.settings.role)));
   if (object.settings.densityKgPerM3) voxhap["density"] = tinygltf::Value(*object.settings.densityKgPerM3);
   if (object.settings.pointOffsetM) voxhap["point_offset"] = tinygltf::Value(*object.settings.pointOffsetM);
+  if (object.settings.forceLayer) voxhap["force_layer"] = tinygltf::Value(int{*object.settings.forceLayer});
   tinygltf::Value::Object extras;
   extras["voxhap"] = tinygltf::Value(std::move(voxhap));
   return tinygltf::Value(std::move(extras));

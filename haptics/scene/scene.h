@@ -80,6 +80,9 @@ struct ObjectSettings {
   /// Its points' displacement along their normals, m, negative inward: what seats a part
   /// in a close fit (paper §3.2, mating surfaces). 0 if unset.
   std::optional<double> pointOffsetM;
+  /// The force layer of its pairs when it moves (paper §3.2: a mating part's own; a pair
+  /// of two such objects takes the smaller); unset: the session's, which the user may vary.
+  std::optional<std::uint8_t> forceLayer;
 };
 
 /// A logical object: one or more parts that collide as one rigid body.

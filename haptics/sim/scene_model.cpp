@@ -1,5 +1,7 @@
 #include "haptics/sim/scene_model.h"
 
+#include <algorithm>
+
 #include "haptics/core/error.h"
 #include "haptics/dynamics/mass_properties.h"
 #include "haptics/scene/object_selection.h"
@@ -26,6 +28,10 @@ BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& moving
   const ObjectSelection selection = selectObjects(scene, movingNames);
   const std::vector<const SceneObject*>& moving = selection.picked;
   const std::vector<const SceneObject*>& fixed = selection.rest;
+  for (const auto& [name, layer] : options.forceLayerOf) {
+    if (std::none_of(moving.begin(), moving.end(), [&](const SceneObject* o) { return o->name == name; }))
+      throw Error("a force layer for " + name + ", which is not a moving object");
+  }
 
   const double steps = static_cast<double>(2 * moving.size() + 1);
   auto stage = [&](double k) -> ProgressFn {
@@ -73,6 +79,8 @@ BuiltScene buildScene(const Scene& scene, const std::vector<std::string>& moving
       object.voxmap = options.voxelizeFn(one, voxelOptions, stage(static_cast<double>(2 + 2 * i)));
     }
     object.coupled = true;
+    const auto layer = options.forceLayerOf.find(source.name);
+    object.forceLayer = layer != options.forceLayerOf.end() ? layer->second : source.settings.forceLayer;
     objects.push_back(std::move(object));
   }
   // the voxmap's arrays that the pager fills stay where they are when the voxmap moves

@@ -5,6 +5,7 @@
 /// voxhap::Error naming the object.
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -42,6 +43,8 @@ struct SceneModelOptions {
   /// Every moving object's points displaced along their normals, m (negative: inward;
   /// mating surfaces). Unset: each object's own (ObjectSettings::pointOffsetM).
   std::optional<double> pointDisplacementM;
+  /// Force layers of moving objects by name, over their own (ObjectSettings::forceLayer).
+  std::map<std::string, std::uint8_t> forceLayerOf;
   /// Take the moving objects' points from this free-space layer (0: the surface).
   int pointFreeLayer = 0;
   VoxelizeObjectsFn voxelizeFn = voxelizeObjects;

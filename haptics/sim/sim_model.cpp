@@ -34,12 +34,43 @@ double contactInertiaKg(const MovingObjectModel& object) {
   return worst > 0.0 ? std::min(object.body.massKg, 1.0 / worst) : object.body.massKg;
 }
 
+/// The smaller of the force layers that the pair's moving objects have of their own.
+std::optional<std::uint8_t> ownForceLayer(const SimModel& model, const PairModel& pair) {
+  std::optional<std::uint8_t> layer;
+  for (const int i : {pair.shellObject, pair.voxmapObject}) {
+    if (i == kStaticEnvironment) continue;
+    const std::optional<std::uint8_t> own = model.objects[static_cast<std::size_t>(i)].forceLayer;
+    if (own) layer = std::min(layer.value_or(*own), *own);
+  }
+  return layer;
+}
+
+/// Throws voxhap::Error, `whose` leading, when the pair cannot render force layer `forceLayer`.
+void checkForceLayer(const SimModel& model, const PairModel& pair, const SimOptions& options,
+                     std::uint8_t forceLayer, const std::string& whose) {
+  const Voxmap& voxmap = model.voxmapOf(pair);
+  if (forceLayer < 1 || forceLayer > voxmap.encoding().maxValue()) {
+    throw Error(whose + "force layer " + std::to_string(forceLayer) + " is outside the voxmap's values 1 … " +
+                std::to_string(voxmap.encoding().maxValue()));
+  }
+  if (options.surfaceContact && voxmap.hasSurfacePlanes() && forceLayer < kSurfaceContactForceLayer) {
+    throw Error(whose + "force layer " + std::to_string(forceLayer) +
+                " does not reach the points that surface contact pushes (at least " +
+                std::to_string(kSurfaceContactForceLayer) + ")");
+  }
+}
+
 ContactParams pairParams(const SimModel& model, const PairModel& pair, const SimOptions& options) {
   const Voxmap& voxmap = model.voxmapOf(pair);
   const std::uint8_t forceLayer = options.forceLayerValue();
-  if (forceLayer < 1 || forceLayer > voxmap.encoding().maxValue()) {
-    throw Error("force layer " + std::to_string(forceLayer) + " is outside the voxmap's values 1 … " +
-                std::to_string(voxmap.encoding().maxValue()));
+  checkForceLayer(model, pair, options, forceLayer, "");
+  if (pair.ownForceLayer) {
+    const auto nameOf = [&model](int i) {
+      return i == kStaticEnvironment ? std::string("the static scene")
+                                     : model.objects[static_cast<std::size_t>(i)].name;
+    };
+    checkForceLayer(model, pair, options, *pair.ownForceLayer,
+                    nameOf(pair.shellObject) + " against " + nameOf(pair.voxmapObject) + ": its own ");
   }
   double inertia = contactInertiaKg(model.objects[static_cast<std::size_t>(pair.shellObject)]);
   if (pair.voxmapObject != kStaticEnvironment) {
@@ -53,11 +84,6 @@ ContactParams pairParams(const SimModel& model, const PairModel& pair, const Sim
   if (options.surfaceContact && voxmap.hasSurfacePlanes()) {
     const Pointshell& shell = model.objects[static_cast<std::size_t>(pair.shellObject)].shell;
     const double voxelM = voxmap.grid().voxelSizeM;
-    if (forceLayer < kSurfaceContactForceLayer) {
-      throw Error("force layer " + std::to_string(forceLayer) +
-                  " does not reach the points that surface contact pushes (at least " +
-                  std::to_string(kSurfaceContactForceLayer) + ")");
-    }
     if (shell.pointSpacingM > 2.0 * voxelM) {
       throw Error("surface contact needs points at most two voxels apart, not " +
                   std::to_string(shell.pointSpacingM / voxelM) + " voxels");
@@ -99,7 +125,7 @@ SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxm
 
   const int n = static_cast<int>(model.objects.size());
   for (int i = 0; i < n; ++i) {
-    if (model.staticVoxmap) model.pairs.push_back({i, kStaticEnvironment, {}});
+    if (model.staticVoxmap) model.pairs.push_back({i, kStaticEnvironment, {}, {}});
   }
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
@@ -110,11 +136,12 @@ SimModel makeSimModel(std::vector<MovingObjectModel> objects, std::optional<Voxm
       if (!hasVoxels(voxels.voxmap))
         throw Error(voxels.name + ": a moving object needs a voxmap to collide with " +
                     (aIsShell ? a.name : b.name));
-      model.pairs.push_back({aIsShell ? i : j, aIsShell ? j : i, {}});
+      model.pairs.push_back({aIsShell ? i : j, aIsShell ? j : i, {}, {}});
     }
   }
   for (MovingObjectModel& object : model.objects) object.maxTravelM = std::numeric_limits<double>::infinity();
   for (PairModel& pair : model.pairs) {
+    pair.ownForceLayer = ownForceLayer(model, pair);
     pair.params = pairParams(model, pair, options);
     const Voxmap& voxmap = model.voxmapOf(pair);
     pair.fieldShifts = fieldShiftsByFeature(pair.params.geometricalAwareness, voxmap.encoding());

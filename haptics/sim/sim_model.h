@@ -52,13 +52,18 @@ struct MovingObjectModel {
   double maxTravelM = 0.0;
   bool coupled = false;  ///< a handle drives it through a virtual coupling
   CouplingGains gains;   ///< of that coupling
+  /// The force layer of its pairs (ObjectSettings::forceLayer); unset: the session's.
+  std::optional<std::uint8_t> forceLayer;
 };
 
 /// One pair that can touch.
 struct PairModel {
   int shellObject = 0;                    ///< index of the moving object sampled as points
   int voxmapObject = kStaticEnvironment;  ///< index of the moving object sampled as voxels, or static
-  ContactParams params;
+  ContactParams params;  ///< its force layer is the session's at the start (SimState::forceLayer)
+  /// The pair's own force layer, kept whatever the session's: the smaller of its objects'
+  /// (MovingObjectModel::forceLayer) where either has one.
+  std::optional<std::uint8_t> ownForceLayer;
   std::array<std::uint8_t, 3> fieldShifts{};  ///< per point feature, from fieldShiftsByFeature
   /// Most each of its objects may move in a frame for this pair's sake, m: half a voxel
   /// of its voxmap while any of its chunks is in range (paper §5), half a chunk while the
@@ -66,6 +71,11 @@ struct PairModel {
   /// halved again when both objects move.
   double nearTravelM = 0.0;
   double farTravelM = 0.0;
+
+  /// The force layer the pair renders with while the session's is `sessionForceLayer`.
+  std::uint8_t forceLayer(std::uint8_t sessionForceLayer) const noexcept {
+    return ownForceLayer.value_or(sessionForceLayer);
+  }
 };
 
 /// Time-critical sampling (paper §5, DESIGN §4.5).

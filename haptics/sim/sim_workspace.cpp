@@ -38,9 +38,9 @@ SimWorkspace makeSimWorkspace(const SimModel& model, const SimState& state,
   for (const PairModel& pair : model.pairs) {
     const MovingObjectModel& shellObject = model.objects[static_cast<std::size_t>(pair.shellObject)];
     const Voxmap& voxmap = model.voxmapOf(pair);
-    PairCoherence& coherence =
-        ws.coherence.emplace_back(shellObject.shell, voxmap.grid().voxelSizeM, state.forceLayer,
-                                  voxmap.encoding().maxValue(), model.coherence.pointDrifting);
+    PairCoherence& coherence = ws.coherence.emplace_back(
+        shellObject.shell, voxmap.grid().voxelSizeM, pair.forceLayer(state.forceLayer),
+        voxmap.encoding().maxValue(), model.coherence.pointDrifting);
     const Pose shellToVoxmap = shellToVoxmapPose(model, state, pair);
     if (inRange(shellObject, shellToVoxmap, voxmap.grid())) {
       coherence.sortAll(shellObject.shell, voxmap, VoxelTransform::make(shellToVoxmap, voxmap.grid()),

@@ -36,7 +36,8 @@ bool setForceLayer(const SimModel& model, SimState& state, SimWorkspace& workspa
                    std::uint8_t value) noexcept {
   if (!model.forceLayerInRange(value)) return false;
   state.forceLayer = value;
-  for (PairCoherence& c : workspace.coherence) c.setForceLayer(value);
+  for (std::size_t p = 0; p < workspace.coherence.size(); ++p)
+    workspace.coherence[p].setForceLayer(model.pairs[p].forceLayer(value));
   return true;
 }
 
@@ -241,7 +242,7 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
       continue;
     }
     ContactParams params = pair.params;
-    params.forceLayer = state.forceLayer;
+    params.forceLayer = pair.forceLayer(state.forceLayer);
     std::uint32_t tested = 0;
     const std::uint32_t found = findContacts(model, ws, plan, p, params, tested, missing);
     testedInFrame += tested;

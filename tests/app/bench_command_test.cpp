@@ -159,6 +159,11 @@ TEST_F(BenchCommand, RotationTurnsTheBallAtItsLimitWhenCapacityIsAmple) {
     EXPECT_NEAR(row.at("frames").get<double>(), limitFrames, 0.05 * limitFrames);
     EXPECT_GE(row.at("rotation_s").get<double>(), row.at("limit_s").get<double>() * 0.99);
     EXPECT_GT(row.at("mean_contacts").get<double>(), 0.0);
+    // seated as a mating pair: its own force layer, the surface voxels, and points a voxel inward
+    EXPECT_EQ(row.at("force_layer"), 2);
+    EXPECT_DOUBLE_EQ(row.at("point_offset_m").get<double>(), -0.002);
+    EXPECT_LT(row.at("max_centre_drift_m").get<double>(), 0.25 * 0.002);
+    EXPECT_LT(row.at("max_penetration_m").get<double>(), 0.5 * 0.002);
   }
   // the turn's limit goes with the lever arm: half the radius, about half the time
   EXPECT_NEAR(rows[1].at("limit_s").get<double>() / rows[0].at("limit_s").get<double>(), 0.5, 0.05);

@@ -285,6 +285,27 @@ TEST_F(SimulateCommand, PointsInAFreeLayerAreRefusedWithSurfaceContactTheDefault
   EXPECT_EQ(paper.exitCode, 0) << paper.err;
 }
 
+TEST_F(SimulateCommand, ForceLayerOfAMovingObjectIsCheckedAndTaken) {
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n");
+  const auto run = [&](const std::string& value) {
+    return voxhap({"simulate", asset("peg-in-hole.glb"), "--move", "peg", "--script", script, "--duration",
+                   "0.01", "--force-layer-of", value});
+  };
+  for (const char* bad : {"peg", "=3", "peg=0", "peg=256", "peg=three"}) {
+    const CliRun r = run(bad);
+    EXPECT_EQ(r.exitCode, 2) << bad;
+    EXPECT_NE(r.err.find("force-layer-of"), std::string::npos) << r.err;
+  }
+  const CliRun still = run("block=4");
+  EXPECT_NE(still.exitCode, 0);
+  EXPECT_NE(still.err.find("block, which is not a moving object"), std::string::npos) << still.err;
+  const CliRun shallow = run("peg=2");  // surface contact (the default) pushes points up to layer 3
+  EXPECT_NE(shallow.exitCode, 0);
+  EXPECT_NE(shallow.err.find("peg against the static scene: its own force layer 2"), std::string::npos)
+      << shallow.err;
+  EXPECT_EQ(run("peg=5").exitCode, 0);
+}
+
 TEST_F(SimulateCommand, CheckExactOptionsAreChecked) {
   const std::string script = writeScript("0 1 0 0 0 0 0 0\n");
   for (const std::vector<std::string>& extra :

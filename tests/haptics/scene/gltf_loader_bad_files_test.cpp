@@ -589,6 +589,14 @@ TEST(GltfLoaderBadFiles, PointOffsetBeyondOneMetreOrNotANumber) {
                   {"'cube'", "extras.voxhap.point_offset"});
 }
 
+TEST(GltfLoaderBadFiles, ForceLayerNotAWholeNumberOfLayersFrom1To255) {
+  TempDir dir;
+  for (const Json& bad : {Json(0), Json(256), Json(2.5), Json(-3), Json("3")}) {
+    expectLoadError(cubeWithSettings(dir, {{"force_layer", bad}}),
+                    {"'cube'", "extras.voxhap.force_layer", "1 … 255"});
+  }
+}
+
 TEST(GltfLoaderBadFiles, ObjectNameNotAString) {
   TempDir dir;
   expectLoadError(cubeWithSettings(dir, {{"object", 5}}), {"'cube'", "extras.voxhap.object", "string"});

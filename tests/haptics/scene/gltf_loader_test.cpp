@@ -410,8 +410,11 @@ TEST(GltfLoader, PartWithoutMaterialIsWhite) {
 TEST(GltfLoader, ReadsVoxhapExtras) {
   GltfDoc doc;
   const int node = doc.addMeshNode(doc.addMesh(test::unitCube()), "cube node");
-  doc.node(node)["extras"] = test::voxhapExtras(
-      {{"role", "dynamic"}, {"object", "x"}, {"density", 7800}, {"point_offset", -0.0005}});
+  doc.node(node)["extras"] = test::voxhapExtras({{"role", "dynamic"},
+                                                 {"object", "x"},
+                                                 {"density", 7800},
+                                                 {"point_offset", -0.0005},
+                                                 {"force_layer", 5}});
   TempDir dir;
   const Scene scene = loadGltfScene(test::writeDoc(doc, dir.path(), "extras", BufferStorage::Glb));
 
@@ -422,6 +425,7 @@ TEST(GltfLoader, ReadsVoxhapExtras) {
   ASSERT_TRUE(object.settings.densityKgPerM3.has_value());
   EXPECT_DOUBLE_EQ(*object.settings.densityKgPerM3, 7800.0);
   EXPECT_EQ(object.settings.pointOffsetM, -0.0005);
+  EXPECT_EQ(object.settings.forceLayer, std::uint8_t{5});
   EXPECT_EQ(object.parts.at(0).name, "cube node");
   EXPECT_EQ(scene.triangleCount(ObjectRole::Dynamic), 12u);
   EXPECT_EQ(scene.triangleCount(ObjectRole::Static), 0u);
@@ -736,16 +740,20 @@ TEST(GltfLoader, MissingTextureIsAWarningNotAnError) {
 
 // ---- round trip through the writer -----------------------------------------
 
-/// A scene with a two-part dynamic object (two colours, a density, a transform),
+/// A scene with a two-part dynamic object (two colours, a density, a point offset, a
+/// force layer, a transform),
 /// a static object and an unnamed node.
 GltfDoc richDoc() {
   GltfDoc doc;
   const int red = doc.addMaterial({0.9f, 0.1f, 0.1f, 1.0f});
   const int green = doc.addMaterial({0.1f, 0.8f, 0.2f, 0.75f});
-  const int arm = doc.addNode(
-      {{"name", "arm"},
-       {"translation", {0.0, 1.0, 0.0}},
-       {"extras", test::voxhapExtras({{"role", "dynamic"}, {"object", "arm"}, {"density", 7800}})}});
+  const int arm = doc.addNode({{"name", "arm"},
+                               {"translation", {0.0, 1.0, 0.0}},
+                               {"extras", test::voxhapExtras({{"role", "dynamic"},
+                                                              {"object", "arm"},
+                                                              {"density", 7800},
+                                                              {"point_offset", -0.0002},
+                                                              {"force_layer", 4}})}});
   const int upper = doc.addNode({{"name", "upper"}, {"mesh", doc.addMesh(test::unitCube(), red)}});
   const int lower = doc.addNode({{"name", "lower"},
                                  {"mesh", doc.addMesh(test::tetrahedron(), green)},
@@ -767,6 +775,8 @@ void expectSameScene(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.name, y.name);
     EXPECT_EQ(x.settings.role, y.settings.role) << x.name;
     EXPECT_EQ(x.settings.densityKgPerM3, y.settings.densityKgPerM3) << x.name;
+    EXPECT_EQ(x.settings.pointOffsetM, y.settings.pointOffsetM) << x.name;
+    EXPECT_EQ(x.settings.forceLayer, y.settings.forceLayer) << x.name;
     ASSERT_EQ(x.parts.size(), y.parts.size()) << x.name;
     for (std::size_t p = 0; p < x.parts.size(); ++p) {
       EXPECT_EQ(x.parts[p].name, y.parts[p].name) << x.name;
@@ -792,6 +802,7 @@ TEST(GltfLoader, RoundTripsThroughWriteGlb) {
   EXPECT_EQ(reloaded.objects[0].name, "arm");
   EXPECT_EQ(reloaded.objects[0].settings.role, ObjectRole::Dynamic);
   EXPECT_EQ(reloaded.objects[0].settings.densityKgPerM3, 7800.0);
+  EXPECT_EQ(reloaded.objects[0].settings.forceLayer, std::uint8_t{4});
   EXPECT_EQ(reloaded.objects[0].parts[1].baseColor, glm::vec4(0.1f, 0.8f, 0.2f, 0.75f));
   EXPECT_EQ(reloaded.objects[2].name, "node 4");
 }

@@ -18,7 +18,7 @@ Scene tetrahedronScene() {
   mesh.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   Scene scene;
   scene.sourceName = "tetrahedron";
-  SceneObject object{"tet", {ObjectRole::Dynamic, 2700.0, -0.0005}, {}};
+  SceneObject object{"tet", {ObjectRole::Dynamic, 2700.0, -0.0005, 6}, {}};
   object.parts.push_back(makePart("tet", glm::vec4(0.5f, 0.25f, 1.0f, 1.0f), mesh));
   scene.objects.push_back(object);
   return scene;
@@ -36,6 +36,7 @@ TEST(GltfWriter, WritesAtomicallyAndLeavesNoPartialFile) {
   EXPECT_EQ(back.objects[0].settings.role, ObjectRole::Dynamic);
   EXPECT_EQ(back.objects[0].settings.densityKgPerM3, 2700.0);
   EXPECT_EQ(back.objects[0].settings.pointOffsetM, -0.0005);
+  EXPECT_EQ(back.objects[0].settings.forceLayer, std::uint8_t{6});
   EXPECT_EQ(back.objects[0].parts[0].baseColor, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
   fs::remove_all(dir);
 }

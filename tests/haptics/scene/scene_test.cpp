@@ -22,8 +22,8 @@ TEST(Scene, BoundsCoverUsedVerticesOnly) {
 
 TEST(Scene, CountsTrianglesByRoleAndFindsObjects) {
   Scene scene;
-  scene.objects.push_back({"fixed", {ObjectRole::Static, {}, {}}, {triangle(0.0f)}});
-  scene.objects.push_back({"moving", {ObjectRole::Dynamic, {}, {}}, {triangle(1.0f), triangle(2.0f)}});
+  scene.objects.push_back({"fixed", {ObjectRole::Static, {}, {}, {}}, {triangle(0.0f)}});
+  scene.objects.push_back({"moving", {ObjectRole::Dynamic, {}, {}, {}}, {triangle(1.0f), triangle(2.0f)}});
   EXPECT_EQ(scene.triangleCount(), 3u);
   EXPECT_EQ(scene.triangleCount(ObjectRole::Static), 1u);
   EXPECT_EQ(scene.triangleCount(ObjectRole::Dynamic), 2u);

@@ -84,6 +84,47 @@ TEST(Simulation, RaisingTheForceLayerLiftsTheSphereByAVoxelPerLayer) {
   EXPECT_EQ(state.forceLayer, kDefaultForceLayer);
 }
 
+TEST(Simulation, APartsOwnForceLayerHoldsItWhateverTheSessionsLayer) {
+  // the sphere's own layer 4 (a mating part's, paper §3.2) against the session's 4 and 6
+  Scene scene = sphereOverPlate(0.01, 0.001);
+  const SimModel plain = test::freeModel(scene, {"ball"}, kVoxel, kGravity);
+  scene.objects[1].settings.forceLayer = kDefaultForceLayer;
+  const SimModel own = test::freeModel(scene, {"ball"}, kVoxel, kGravity);
+  ASSERT_EQ(own.pairs.at(0).ownForceLayer, std::optional<std::uint8_t>(kDefaultForceLayer));
+  const auto restingGapM = [&](const SimModel& model, std::uint8_t sessionLayer) {
+    LocalSimulation sim(model);
+    EXPECT_TRUE(setForceLayer(model, sim.state, sim.workspace, sessionLayer));
+    runFree(sim, 1500, [](const SimState&) {});
+    return test::lowestZ(scene.objects[1], objectPose(model, sim.state, 0));
+  };
+  const auto higher = static_cast<std::uint8_t>(kDefaultForceLayer + 2);
+  const double plainGapM = restingGapM(plain, kDefaultForceLayer);
+  EXPECT_NEAR(restingGapM(plain, higher) - plainGapM, 2.0 * kVoxel, 0.5 * kVoxel);  // the session's moves it
+  EXPECT_EQ(restingGapM(own, higher), plainGapM);  // its own holds: the same frames, bit for bit
+}
+
+TEST(Simulation, AForceLayerOfItsOwnThatAPairCannotRenderIsRefusedNamingThePair) {
+  Scene scene = sphereOverPlate(0.01, 0.001);
+  scene.objects[1].settings.forceLayer = 2;  // surface contact pushes points up to layer 3
+  try {
+    test::freeModel(scene, {"ball"}, kVoxel, kGravity, true, true);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ball against the static scene: its own force layer 2"),
+              std::string::npos)
+        << e.what();
+  }
+  scene.objects[1].settings.forceLayer = 200;  // beyond the voxmap's values
+  EXPECT_THROW(test::freeModel(scene, {"ball"}, kVoxel, kGravity), Error);
+  SceneModelOptions options = test::ampleCapacityOptions();
+  options.staticVoxelSizeM = options.pointSpacingM = kVoxel;
+  options.forceLayerOf["plate"] = 3;  // static: no pair of its own
+  EXPECT_THROW(buildSceneModel(scene, {"ball"}, options), Error);
+  options.forceLayerOf = {{"ball", 5}};  // over the scene's 200
+  EXPECT_EQ(buildSceneModel(scene, {"ball"}, options).pairs.at(0).ownForceLayer,
+            std::optional<std::uint8_t>(5));
+}
+
 TEST(Simulation, PointsFromAFreeLayerHoldTheSphereThatManyVoxelsHigher) {
   const Scene scene = sphereOverPlate(0.01, 0.003);
   double gap[2];
