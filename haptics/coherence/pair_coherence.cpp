@@ -20,6 +20,8 @@ constexpr int kChunkTestNow = 1;
 /// under kCollapsedMin (the difference keeps chunks from flapping).
 constexpr int kCollapseAt = 3;
 constexpr int kCollapsedMin = 2;
+/// Points whose voxel words testDue reads before it looks at any of them.
+constexpr std::size_t kTestBatch = 16;
 
 }  // namespace
 
@@ -204,42 +206,60 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
                                              PointContact* contacts, VoxelPager* pager) noexcept {
   PointQueues& queues = points_.queues();
   Tested tested;
+  const VoxelWord fieldMask = voxmap.encoding().fieldMask();
   std::uint32_t at = 0;
   const int queueCount = queueCountFor(forceLayer_, maxValue_);
   for (int q = 0; q < queueCount; ++q) {
-    const std::uint32_t end = dueEndByQueue_[static_cast<std::size_t>(q)];
-    for (; at < end && at < due.size(); ++at) {
-      const std::uint32_t point = due[at];
-      const glm::vec3 voxel = transform.apply(shell.positionsLocal[point]);
-      if (drifting_ && q >= kMandatoryQueues && lookupQueue_[point] >= kMandatoryQueues) {
-        const float guaranteedVoxels = static_cast<float>(voxelsToContact(lookupQueue_[point])) -
-                                       glm::length(voxel - lookupVoxel_[point]);
-        if (guaranteedVoxels >= 2.0f) {
-          queues.move(point, q, std::min(q, static_cast<int>(guaranteedVoxels) + 1));
+    const auto end = std::min<std::size_t>(dueEndByQueue_[static_cast<std::size_t>(q)], due.size());
+    const bool mayDrift = drifting_ && q >= kMandatoryQueues;
+    while (at < end) {
+      // Each batch reads its voxel words first, all independent loads, so that their cache
+      // misses overlap; then classifies the points in order, as one at a time would.
+      const auto batch = static_cast<std::uint32_t>(std::min<std::size_t>(kTestBatch, end - at));
+      std::array<glm::vec3, kTestBatch> voxels;
+      std::array<glm::ivec3, kTestBatch> ijks;
+      std::array<VoxelWord, kTestBatch> words;
+      std::array<float, kTestBatch> guaranteedVoxels;  // by the last lookup, drifting; else 0
+      for (std::uint32_t k = 0; k < batch; ++k) {
+        const std::uint32_t point = due[at + k];
+        voxels[k] = transform.apply(shell.positionsLocal[point]);
+        guaranteedVoxels[k] = mayDrift && lookupQueue_[point] >= kMandatoryQueues
+                                  ? static_cast<float>(voxelsToContact(lookupQueue_[point])) -
+                                        glm::length(voxels[k] - lookupVoxel_[point])
+                                  : 0.0f;
+        if (guaranteedVoxels[k] >= 2.0f) continue;
+        ijks[k] = glm::ivec3(glm::floor(voxels[k]));
+        words[k] = voxmap.word(ijks[k]);
+      }
+      for (std::uint32_t k = 0; k < batch; ++k, ++at) {
+        const std::uint32_t point = due[at];
+        const glm::vec3& voxel = voxels[k];
+        if (guaranteedVoxels[k] >= 2.0f) {
+          queues.move(point, q, std::min(q, static_cast<int>(guaranteedVoxels[k]) + 1));
           ++tested.drifted;
           continue;
         }
-      }
-      const PointSample sample =
-          sampleAt(voxmap, voxel, fieldShifts[static_cast<std::size_t>(shell.features[point])]);
-      if (sample.missing) {  // tested again next frame, once its chunk is (asked to be) resident
-        ++tested.missing;
-        queues.move(point, q, 1);
-        if (drifting_) lookupQueue_[point] = 0;
-        const glm::ivec3 chunk = glm::ivec3(glm::floor(voxel / float(kChunkEdgeVoxels)));
-        if (chunk != tested.lastAskedChunk) askAround(pager, voxel, kChunkEdgeVoxels);
-        tested.lastAskedChunk = chunk;  // neighbours miss together: one request for a run of them
-        continue;
-      }
-      // value − 1 wraps far (0) to 255, so one compare keeps [1, sampledLayer]
-      if (static_cast<std::uint8_t>(sample.value - 1u) < sampledLayer) {
-        contacts[tested.contacts++] = {point, sample.ijkVoxel, sample.value};
-      }
-      const int found = queueForValue(sample.value, forceLayer_, maxValue_);
-      queues.move(point, q, found);
-      if (drifting_) {
-        lookupVoxel_[point] = voxel;
-        lookupQueue_[point] = static_cast<std::uint8_t>(found);
+        if (words[k] == Voxmap::kMissingWord) {  // tested again once its chunk is (asked to be) resident
+          ++tested.missing;
+          queues.move(point, q, 1);
+          if (drifting_) lookupQueue_[point] = 0;
+          const glm::ivec3 chunk = glm::ivec3(glm::floor(voxel / float(kChunkEdgeVoxels)));
+          if (chunk != tested.lastAskedChunk) askAround(pager, voxel, kChunkEdgeVoxels);
+          tested.lastAskedChunk = chunk;  // neighbours miss together: one request for a run of them
+          continue;
+        }
+        const std::uint8_t shift = fieldShifts[static_cast<std::size_t>(shell.features[point])];
+        const auto value = static_cast<std::uint8_t>((words[k] >> shift) & fieldMask);
+        // value − 1 wraps far (0) to 255, so one compare keeps [1, sampledLayer]
+        if (static_cast<std::uint8_t>(value - 1u) < sampledLayer) {
+          contacts[tested.contacts++] = {point, ijks[k], value};
+        }
+        const int found = queueForValue(value, forceLayer_, maxValue_);
+        queues.move(point, q, found);
+        if (drifting_) {
+          lookupVoxel_[point] = voxel;
+          lookupQueue_[point] = static_cast<std::uint8_t>(found);
+        }
       }
     }
   }
