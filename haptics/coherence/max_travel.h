@@ -31,9 +31,16 @@
 /// Several pairs share one capacity: every moving object's MaxTravel is its upper bound
 /// times one scale, so that a pair's relative travel per frame is the scale times the sum
 /// of its objects' bounds; travelScale() solves Eq. 2 for that scale.
-/// Everything here is noexcept and allocation-free.
-
-#include <cmath>
+///
+/// Eq. 2 as the paper writes it counts n_i · T / d_i tests of queue i, the quota each
+/// sweep would take if a queue's members stayed put. They do not: points leave a queue
+/// where the sweep tests them and join it anywhere, so the blocks just ahead of a sweep,
+/// unvisited for a whole round, hold more of them than the average (1.1 to 1.9 times the
+/// quota by queue in the seated 25 mm ball). So the sweeps count what they would take at
+/// kTravelSteps + 1 travels (SweptQueues::addTestsByTravel), and Eq. 2 takes the largest
+/// travel whose tests fit, from those counts alone: no history, no estimate.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace voxhap {
@@ -67,24 +74,26 @@ struct TravelBudget {
   bool deadlineMissed = false;  ///< more mandatory tests than the capacity
 };
 
-/// Eq. 2 over all pairs: `capacityTests` point tests fit in a frame, `mandatoryTests`
-/// must be done, and `loadAtFullTravel` = Σ over queues of n_i · (relative travel at scale
-/// 1) / (d_i · s) more are needed to let everything move by its bound
-/// (PairCoherence::load).
-inline TravelBudget travelScale(double capacityTests, double mandatoryTests,
-                                double loadAtFullTravel) noexcept {
-  if (mandatoryTests >= capacityTests) return {0.0, true};
-  if (!(loadAtFullTravel > 0.0)) return {1.0, false};
-  const double scale = (capacityTests - mandatoryTests) / loadAtFullTravel;
-  return {scale < 1.0 ? scale : 1.0, false};
-}
+/// Travel scales at which the sweeps count their tests: k / kTravelSteps, k = 0 … kTravelSteps.
+inline constexpr int kTravelSteps = 32;
+/// Tests beyond the mandatory ones at each of those scales, non-decreasing.
+using TestsByTravel = std::array<double, kTravelSteps + 1>;
 
-/// Eq. 3: how many of the `count` members of a queue whose members must be tested again
-/// before a relative travel of `distanceM` (d_i · s) to test this frame, when the pair
-/// moves by at most `travelM`.
-inline std::uint32_t sweepQuota(std::uint32_t count, double travelM, double distanceM) noexcept {
-  const double share = std::ceil(static_cast<double>(count) * travelM / distanceM);
-  return share >= static_cast<double>(count) ? count : static_cast<std::uint32_t>(share);
+/// Eq. 2 over all pairs: `capacityTests` point tests fit in a frame, `mandatoryTests` must
+/// be done, and `tests[k]` more are taken at scale k / kTravelSteps. The largest scale
+/// whose tests fit, linear between the counted scales (a frame may take up to one step's
+/// tests over the capacity).
+inline TravelBudget travelScale(double capacityTests, double mandatoryTests,
+                                const TestsByTravel& tests) noexcept {
+  if (mandatoryTests >= capacityTests) return {0.0, true};
+  const double room = capacityTests - mandatoryTests;
+  if (tests[kTravelSteps] <= room) return {1.0, false};
+  int k = 0;
+  while (tests[static_cast<std::size_t>(k + 1)] <= room) ++k;
+  const double below = tests[static_cast<std::size_t>(k)];
+  const double above = tests[static_cast<std::size_t>(k + 1)];
+  const double within = below >= room ? 0.0 : (room - below) / (above - below);
+  return {(k + within) / kTravelSteps, false};
 }
 
 }  // namespace voxhap

@@ -125,17 +125,15 @@ void PairCoherence::sortAll(const Pointshell& shell, const Voxmap& voxmap, const
   }
   points_.clearOwed();
   chunks_.clearOwed();
-  lastTravelM_ = 0.0;
 }
 
-void PairCoherence::skipFrame(double relativeTravelM) noexcept {
+void PairCoherence::skipFrame() noexcept {
   if (chunks_.queues().count(kChunkTestNow) != chunks_.queues().pointCount()) {
     points_.queues().clear();
     chunks_.queues().assignAll(kChunkTestNow);
   }
   points_.clearOwed();
   chunks_.clearOwed();
-  lastTravelM_ = relativeTravelM;
 }
 
 void PairCoherence::setForceLayer(std::uint8_t forceLayer) noexcept {
@@ -150,14 +148,13 @@ bool PairCoherence::onlyCollapsed() const noexcept {
   return chunks.count(kChunkInRange) == 0 && chunks.count(kChunkTestNow) == 0;
 }
 
-CoherenceLoad PairCoherence::load() const noexcept {
+CoherenceLoad PairCoherence::load(double fullTravelM) const noexcept {
   CoherenceLoad load;
   const PointQueues& points = points_.queues();
-  const PointQueues& chunks = chunks_.queues();
   for (int q = 0; q < queueCountFor(forceLayer_, maxValue_); ++q) {
     const double d = pointDistanceM(q);
     if (d > 0.0) {
-      load.testsPerM += points.count(q) / d;
+      points_.addTestsByTravel(q, d, fullTravelM, load.tests);
     } else {
       load.mandatory += points.count(q);
     }
@@ -165,9 +162,9 @@ CoherenceLoad PairCoherence::load() const noexcept {
   for (int q = 0; q < kChunkQueues; ++q) {
     const double d = chunkDistanceM(q);
     if (d > 0.0) {
-      load.testsPerM += chunks.count(q) / d;
+      chunks_.addTestsByTravel(q, d, fullTravelM, load.tests);
     } else {
-      load.mandatory += chunks.count(q);
+      load.mandatory += chunks_.queues().count(q);
     }
   }
   return load;
@@ -178,7 +175,7 @@ std::uint32_t PairCoherence::updateChunks(const Pointshell& shell, const Voxmap&
                                           std::span<std::uint32_t> scratch, VoxelPager* pager) noexcept {
   std::uint32_t tests = 0;
   for (int q = 0; q < kChunkQueues; ++q) {
-    const std::uint32_t n = chunks_.collect(q, chunkDistanceM(q), relativeTravelM, lastTravelM_, scratch);
+    const std::uint32_t n = chunks_.collect(q, chunkDistanceM(q), relativeTravelM, scratch);
     for (std::uint32_t i = 0; i < n; ++i) {
       const std::uint32_t c = scratch[i];
       const glm::vec3 centroid = transform.apply(shell.chunkCentroidsLocal[c]);
@@ -193,7 +190,7 @@ std::uint32_t PairCoherence::collectDue(double relativeTravelM, std::span<std::u
   std::uint32_t n = 0;
   const int queueCount = queueCountFor(forceLayer_, maxValue_);
   for (int q = 0; q < queueCount; ++q) {
-    n += points_.collect(q, pointDistanceM(q), relativeTravelM, lastTravelM_, due.subspan(n));
+    n += points_.collect(q, pointDistanceM(q), relativeTravelM, due.subspan(n));
     dueEndByQueue_[static_cast<std::size_t>(q)] = n;
   }
   return n;

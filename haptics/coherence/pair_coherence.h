@@ -7,9 +7,8 @@
 /// voxels of relative travel, by sweeps (swept_queues.h). By the paper's quota alone a
 /// point waits while others join the queue ahead of the cursor: in a random-motion test
 /// one waited 6 frames where its 2 voxels allowed 4 and was found in contact untested.
-/// The sweeps also cover the queue's indices at the rate the travel asks, which bounds
-/// every wait; where a queue's points crowd into a run of indices a frame may take more
-/// than its quota.
+/// The sweeps cover the pointshell's blocks at the rate the travel asks instead, which
+/// bounds every wait and takes about the quota.
 ///
 /// Chunks (paper §5.1). A chunk of the pointshell (its points have contiguous indices)
 /// whose centroid lies at chunk distance D from the voxel-bearing chunks of the voxmap
@@ -40,6 +39,7 @@
 #include <span>
 #include <vector>
 
+#include "haptics/coherence/max_travel.h"
 #include "haptics/coherence/swept_queues.h"
 #include "haptics/collide/point_sampler.h"
 #include "haptics/voxel/voxel_pager.h"
@@ -49,7 +49,7 @@ namespace voxhap {
 /// What a pair's coherence asks of Eq. 2 this frame.
 struct CoherenceLoad {
   std::uint32_t mandatory = 0;  ///< points and chunks tested whatever the travel
-  double testsPerM = 0.0;       ///< other tests per metre of relative travel per frame
+  TestsByTravel tests{};        ///< other tests at each travel scale (max_travel.h)
 };
 
 class PairCoherence {
@@ -67,13 +67,14 @@ public:
   /// time); with a `pager` (paged voxmap, else null) it first makes their voxels resident.
   void sortAll(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                const std::array<std::uint8_t, 3>& fieldShifts, VoxelPager* pager);
-  /// A frame out of range in which the pair may move `relativeTravelM`.
-  void skipFrame(double relativeTravelM) noexcept;
+  /// A frame out of range.
+  void skipFrame() noexcept;
   /// Makes every point in range mandatory, to be re-sorted by its next test.
   void setForceLayer(std::uint8_t forceLayer) noexcept;
 
-  /// What the queues ask of Eq. 2 now.
-  CoherenceLoad load() const noexcept;
+  /// What the queues ask of Eq. 2 now, for a relative travel of at most `fullTravelM`
+  /// this frame.
+  CoherenceLoad load(double fullTravelM) const noexcept;
   /// Whether every chunk is collapsed: no point can reach contact before its chunk has
   /// been disgorged, so the pair allows half a chunk of travel per frame (a collapsed
   /// chunk is retested while it is still that far from being disgorged).
@@ -104,9 +105,6 @@ public:
                  const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
                  std::span<const std::uint32_t> due, PointContact* contacts, VoxelPager* pager) noexcept;
 
-  /// Call at the end of a frame in range with the travel it allowed.
-  void endFrame(double relativeTravelM) noexcept { lastTravelM_ = relativeTravelM; }
-
 private:
   /// What a test of `chunk` finds with its centroid at `voxelOfCentroid` (voxel coordinates):
   /// 0 (in range) or the whole chunks of its gap, at most the last chunk queue.
@@ -131,7 +129,6 @@ private:
   bool drifting_;
   std::vector<glm::vec3> lookupVoxel_;     // per point, where its last lookup was (voxel coordinates)
   std::vector<std::uint8_t> lookupQueue_;  // per point, the queue that lookup found; 0: none
-  double lastTravelM_ = 0.0;               // relative travel allowed in the frame before
 };
 
 }  // namespace voxhap

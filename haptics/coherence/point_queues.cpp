@@ -3,13 +3,42 @@
 #include <algorithm>
 #include <bit>
 #include <cassert>
+#include <cmath>
+#include <numeric>
 
 namespace voxhap {
+
+namespace {
+
+/// Sweep blocks wanted in a round, where there are as many words.
+constexpr std::uint32_t kMinSweepBlocks = 512;
+
+std::uint32_t blockWordsFor(std::uint32_t wordCount) {
+  std::uint32_t words = 32;
+  while (words > 1 && wordCount / words < kMinSweepBlocks) words /= 2;
+  return words;
+}
+
+/// The order in which sweeps visit `blockCount` blocks: block b at step b · G mod
+/// blockCount, G near its golden section and prime to it, so that the steps of any run
+/// of neighbouring blocks are spread evenly over the round.
+std::vector<std::uint32_t> sweepOrderFor(std::uint32_t blockCount) {
+  auto g = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(0.618034 * blockCount)));
+  while (std::gcd(g, blockCount) != 1) ++g;
+  std::vector<std::uint32_t> order(blockCount);
+  for (std::uint32_t b = 0; b < blockCount; ++b) order[std::uint64_t{b} * g % blockCount] = b;
+  return order;
+}
+
+}  // namespace
 
 PointQueues::PointQueues(std::uint32_t pointCount, int queueCount)
     : pointCount_(pointCount),
       wordCount_((pointCount + kWordBits - 1) / kWordBits),
       summaryCount_((wordCount_ + kWordBits - 1) / kWordBits),
+      blockWords_(blockWordsFor(wordCount_)),
+      blockCount_(std::max<std::uint32_t>(1, (wordCount_ + blockWords_ - 1) / blockWords_)),
+      sweepOrder_(sweepOrderFor(blockCount_)),
       bits_(static_cast<std::size_t>(queueCount) * wordCount_, 0),
       summary_(static_cast<std::size_t>(queueCount) * summaryCount_, 0),
       counts_(static_cast<std::size_t>(queueCount), 0),
@@ -121,30 +150,68 @@ std::uint32_t PointQueues::nextAtOrAfter(int q, std::uint32_t from) const noexce
   return pointCount_;
 }
 
-PointQueues::Sweep PointQueues::takeSweep(int q, std::uint32_t minPoints, std::uint64_t minIndices,
+std::uint32_t PointQueues::nonEmptyWords(int q, std::uint32_t block) const noexcept {
+  const std::uint32_t firstWord = block * blockWords_;
+  if (firstWord >= wordCount_) return 0;
+  // the block's words lie within one summary word
+  const std::uint32_t bits = summary(q)[firstWord / kWordBits] >> (firstWord % kWordBits);
+  return blockWords_ < kWordBits ? bits & ((1u << blockWords_) - 1u) : bits;
+}
+
+std::uint32_t PointQueues::blockPoints(int q, std::uint32_t block) const noexcept {
+  const std::uint32_t* w = words(q) + block * blockWords_;
+  std::uint32_t points = 0;
+  for (std::uint32_t bits = nonEmptyWords(q, block); bits; bits &= bits - 1) {
+    points += static_cast<std::uint32_t>(std::popcount(w[std::countr_zero(bits)]));
+  }
+  return points;
+}
+
+std::uint32_t PointQueues::takeBlock(int q, std::uint32_t block, std::span<std::uint32_t> out,
+                                     std::uint32_t at) const noexcept {
+  const std::uint32_t points = blockPoints(q, block);
+  if (points > out.size() - at) return kNoRoom;
+  for (std::uint32_t bits = nonEmptyWords(q, block); bits; bits &= bits - 1) {
+    const std::uint32_t wi = block * blockWords_ + static_cast<std::uint32_t>(std::countr_zero(bits));
+    for (std::uint32_t word = words(q)[wi]; word; word &= word - 1) {
+      out[at++] = wi * kWordBits + static_cast<std::uint32_t>(std::countr_zero(word));
+    }
+  }
+  return points;
+}
+
+void PointQueues::pointsAhead(int q, std::span<const std::uint32_t> blockMarks,
+                              std::span<std::uint32_t> points) const noexcept {
+  std::uint32_t step = cursors_[static_cast<std::size_t>(q)];
+  std::uint32_t passed = 0;
+  std::uint32_t sum = 0;
+  for (std::size_t k = 0; k < blockMarks.size(); ++k) {
+    for (; passed < std::min(blockMarks[k], blockCount_); ++passed) {
+      sum += blockPoints(q, sweepOrder_[step]);
+      step = step + 1 == blockCount_ ? 0 : step + 1;
+    }
+    points[k] = sum;
+  }
+}
+
+PointQueues::Sweep PointQueues::takeSweep(int q, std::uint32_t minBlocks,
                                           std::span<std::uint32_t> out) noexcept {
   Sweep sweep;
-  if (pointCount_ == 0) return sweep;
   const auto qi = static_cast<std::size_t>(q);
-  const std::uint64_t n = pointCount_;
-  const std::uint64_t mustCover = std::min<std::uint64_t>(minIndices, n);
-  const std::uint32_t cap = std::min(counts_[qi], static_cast<std::uint32_t>(out.size()));
-  // positions are unwrapped: start … start + n covers every index once
-  const std::uint64_t start = cursors_[qi];
-  std::uint64_t at = start;
-  while (sweep.taken < cap) {
-    const auto index = static_cast<std::uint32_t>(at % n);
-    std::uint32_t next = nextAtOrAfter(q, index);
-    std::uint64_t position = at - index + next;
-    if (next == pointCount_) position = at - index + n + nextAtOrAfter(q, 0);  // wrap round
-    if (position >= start + n) break;                                          // a full circle
-    if (sweep.taken >= minPoints && position >= start + mustCover) break;
-    out[sweep.taken++] = static_cast<std::uint32_t>(position % n);
-    at = position + 1;
+  const std::uint32_t count = counts_[qi];
+  const std::uint32_t mustCover = std::min(minBlocks, blockCount_);
+  std::uint32_t& step = cursors_[qi];
+  while (sweep.coveredBlocks < mustCover && sweep.taken < count) {
+    const std::uint32_t taken = takeBlock(q, sweepOrder_[step], out, sweep.taken);
+    if (taken == kNoRoom) break;
+    sweep.taken += taken;
+    ++sweep.coveredBlocks;
+    step = step + 1 == blockCount_ ? 0 : step + 1;
   }
-  at = std::max(at, start + mustCover);
-  sweep.coveredIndices = at - start;
-  cursors_[qi] = static_cast<std::uint32_t>(at % n);
+  if (sweep.taken == count && sweep.coveredBlocks < mustCover) {  // nobody left to pass over
+    step = static_cast<std::uint32_t>((std::uint64_t{step} + mustCover - sweep.coveredBlocks) % blockCount_);
+    sweep.coveredBlocks = mustCover;
+  }
   return sweep;
 }
 

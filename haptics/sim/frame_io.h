@@ -95,7 +95,7 @@ struct CoherenceFrame {
   std::uint32_t mandatory = 0;   ///< points and chunks tested whatever the travel
   double capacityTests = 0.0;    ///< n_cap used by Eq. 2
   double travelScale = 1.0;      ///< every object's MaxTravel over its upper bound
-  double plannedLoad = 0.0;      ///< Eq. 2's free-space tests at full travel, with the sweeps' excess
+  double plannedLoad = 0.0;      ///< Eq. 2's free-space tests at full travel
   bool deadlineMissed = false;   ///< more mandatory tests than capacity (see planFrame)
 };
 

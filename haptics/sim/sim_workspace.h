@@ -54,9 +54,6 @@ struct SimWorkspace {
   std::vector<PairCoherence> coherence;
   /// Online estimate of the time one point test (with its share of the frame) takes, s.
   double testCostS = 20e-9;
-  /// Free-space tests the sweeps take over those Eq. 3 asks for, smoothed (≥ 1; from
-  /// the tests themselves, so a fixed capacity stays bit-reproducible).
-  double sweepExcess = 1.0;
   bool lastDeadlineMissed = false;  ///< the previous frame had more mandatory tests than capacity
   std::uint32_t lastTested = 0;     ///< point tests of the previous frame
   Suspensions suspensions;

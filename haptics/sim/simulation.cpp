@@ -98,7 +98,7 @@ void planFrame(const SimModel& model, const SimState& state, std::span<const Kin
     }
   }
   double mandatory = 0.0;
-  double load = 0.0;
+  TestsByTravel tests{};
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     const PairModel& pair = model.pairs[p];
     PairFrame& frame = ws.pairFrames[p];
@@ -107,9 +107,9 @@ void planFrame(const SimModel& model, const SimState& state, std::span<const Kin
       frame.relativeTravelBoundM += ws.travelBoundM[static_cast<std::size_t>(pair.voxmapObject)];
     }
     if (coherent && frame.inRange) {
-      const CoherenceLoad pairLoad = ws.coherence[p].load();
+      const CoherenceLoad pairLoad = ws.coherence[p].load(frame.relativeTravelBoundM);
       mandatory += pairLoad.mandatory;
-      load += pairLoad.testsPerM * frame.relativeTravelBoundM;
+      for (std::size_t k = 0; k < tests.size(); ++k) tests[k] += pairLoad.tests[k];
     }
   }
   const bool missedBefore = ws.lastDeadlineMissed;
@@ -119,10 +119,8 @@ void planFrame(const SimModel& model, const SimState& state, std::span<const Kin
   plan.capacityTests = model.coherence.capacityTests > 0.0
                            ? model.coherence.capacityTests
                            : model.coherence.testBudgetFraction * model.dtS / ws.testCostS;
-  // the sweeps may take more than Eq. 3's quotas where a queue's points crowd into a run of
-  // indices (pair_coherence.h): plan with the excess measured so far
-  plan.plannedLoad = load * ws.sweepExcess;
-  const TravelBudget budget = travelScale(plan.capacityTests, mandatory, plan.plannedLoad);
+  plan.plannedLoad = tests.back();
+  const TravelBudget budget = travelScale(plan.capacityTests, mandatory, tests);
   // The first frame with more mandatory tests than capacity stops everything (MaxTravel =
   // 0). If the next is short too, time-criticality is abandoned (paper §5) until it is
   // not: frames test what full MaxTravel needs however long they take, and count as
@@ -160,7 +158,6 @@ std::uint32_t findContacts(const SimModel& model, SimWorkspace& ws, CoherenceFra
                                                     std::span(ws.due.data(), due), ws.contacts.data(), pager);
   plan.drifted += t.drifted;
   missing += t.missing;
-  coherence.endFrame(travelM);
   return t.contacts;
 }
 
@@ -237,8 +234,7 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     const PairModel& pair = model.pairs[p];
     if (!ws.pairFrames[p].inRange) {
-      if (!ws.coherence.empty())
-        ws.coherence[p].skipFrame(plan.travelScale * ws.pairFrames[p].relativeTravelBoundM);
+      if (!ws.coherence.empty()) ws.coherence[p].skipFrame();
       continue;
     }
     ContactParams params = pair.params;
@@ -284,14 +280,6 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
   }
   plan.tested = testedInFrame;
   ws.lastTested = testedInFrame;
-  // what the sweeps took beyond the mandatory tests, over what Eq. 3 asked (enough of
-  // them to be a fair sample): a smoothed ratio, at least one
-  const double asked = plan.travelScale * plan.plannedLoad / ws.sweepExcess;
-  const double taken =
-      static_cast<double>(testedInFrame + plan.chunkTests) - static_cast<double>(plan.mandatory);
-  if (asked >= 100.0 && !plan.deadlineMissed) {
-    ws.sweepExcess = std::max(1.0, 0.95 * ws.sweepExcess + 0.05 * taken / asked);
-  }
   suspendOrResume(ws, missing > 0, inputs.now);
   if (ws.suspensions.active) {
     status |= kFrameSuspended;

@@ -1,61 +1,46 @@
 #include "haptics/coherence/max_travel.h"
 
-#include <span>
-#include <utility>
-
 #include <gtest/gtest.h>
 
 namespace voxhap {
 namespace {
 
-/// Mandatory points and Σ n_i / d_i (tests per voxel of travel) of queues by count.
-std::pair<double, double> mandatoryAndLoad(std::span<const std::uint32_t> counts) {
-  double mandatory = 0.0, load = 0.0;
-  for (std::size_t i = 0; i < counts.size(); ++i) {
-    if (static_cast<int>(i) < kMandatoryQueues) {
-      mandatory += counts[i];
-    } else {
-      load += counts[i] / static_cast<double>(voxelsToContact(static_cast<int>(i)));
-    }
-  }
-  return {mandatory, load};
+/// Tests growing in proportion to the travel, `atFullTravel` at scale 1: Eq. 2 as the
+/// paper writes it.
+TestsByTravel proportional(double atFullTravel) {
+  TestsByTravel tests{};
+  for (std::size_t k = 0; k < tests.size(); ++k)
+    tests[k] = atFullTravel * static_cast<double>(k) / kTravelSteps;
+  return tests;
 }
 
 TEST(MaxTravel, FollowsEquationTwoAndItsBound) {
-  // 100 mandatory; 900 spare tests for a load of 600/1 + 600/2 = 900 at full travel: scale 1
-  const std::uint32_t counts[] = {60, 40, 600, 600};
-  const auto [mandatory, load] = mandatoryAndLoad(counts);
-  EXPECT_EQ(mandatory, 100.0);
-  EXPECT_DOUBLE_EQ(load, 900.0);
-  EXPECT_DOUBLE_EQ(travelScale(1000, 100, 900).scale, 1.0);
-  EXPECT_DOUBLE_EQ(travelScale(1000, 100, 1800).scale, 0.5);
-  EXPECT_DOUBLE_EQ(travelScale(1000, 100, 90).scale, 1.0);  // never beyond the bound
-  const TravelBudget stuck = travelScale(100, 100, 900);
+  // 100 mandatory; 900 spare tests
+  EXPECT_DOUBLE_EQ(travelScale(1000, 100, proportional(900)).scale, 1.0);
+  EXPECT_DOUBLE_EQ(travelScale(1000, 100, proportional(1800)).scale, 0.5);
+  EXPECT_DOUBLE_EQ(travelScale(1000, 100, proportional(3600)).scale, 0.25);
+  EXPECT_DOUBLE_EQ(travelScale(1000, 100, proportional(90)).scale, 1.0);  // never beyond the bound
+  const TravelBudget stuck = travelScale(100, 100, proportional(900));
   EXPECT_EQ(stuck.scale, 0.0);
   EXPECT_TRUE(stuck.deadlineMissed);
-  EXPECT_DOUBLE_EQ(travelScale(1000, 0, 0).scale, 1.0);  // nothing near
+  EXPECT_DOUBLE_EQ(travelScale(1000, 0, TestsByTravel{}).scale, 1.0);  // nothing near
 }
 
-TEST(MaxTravel, QuotasTestEveryQueueOftenEnoughAndFitTheCapacity) {
-  constexpr double s = 0.001;
-  const std::uint32_t counts[] = {50, 300, 900, 2000, 10000, 7};
-  const double capacity = 2000;
-  const double boundM = 0.5 * s;
-  const auto [mandatory, load] = mandatoryAndLoad(counts);
-  const TravelBudget budget = travelScale(capacity, mandatory, load * boundM / s);
-  ASSERT_FALSE(budget.deadlineMissed);
-  ASSERT_LT(budget.scale, 1.0);
-  const double travelM = budget.scale * boundM;
-  double tests = mandatory;
-  for (int i = kMandatoryQueues; i < 6; ++i) {
-    const double distanceM = voxelsToContact(i) * s;
-    const std::uint32_t m = sweepQuota(counts[i], travelM, distanceM);
-    // a point of queue i is due again after n_i / m_i frames, in which it moves at most
-    // that many MaxTravels: never as far as the i − 1 voxels it must cross
-    EXPECT_LE(static_cast<double>(counts[i]) / m * travelM, distanceM * (1 + 1e-12));
-    tests += m;
-  }
-  EXPECT_LE(tests, capacity + 4);  // each quota rounds up by less than one
+TEST(MaxTravel, TakesTheLargestTravelWhoseCountedTestsFit) {
+  // a sweep that reaches a crowded block at scale 2/32: 5,000 tests more from there on
+  TestsByTravel tests = proportional(320);
+  for (std::size_t k = 2; k < tests.size(); ++k) tests[k] += 5000;
+  const TravelBudget budget = travelScale(1100, 100, tests);
+  EXPECT_FALSE(budget.deadlineMissed);
+  // room for 1,000: 10 tests at 1/32, 5,020 at 2/32; linear in between
+  EXPECT_DOUBLE_EQ(budget.scale, (1.0 + 990.0 / 5010.0) / kTravelSteps);
+  // Eq. 2 by the proportion at full travel would let it move about 5 times as far, where the
+  // sweeps take 5 times the capacity
+  const double byProportion = travelScale(1100, 100, proportional(tests.back())).scale;
+  EXPECT_GT(byProportion, 4.5 * budget.scale);
+  EXPECT_GT(tests[static_cast<std::size_t>(byProportion * kTravelSteps)], 5000.0);
+  // room for half a test: a twentieth of the first step
+  EXPECT_DOUBLE_EQ(travelScale(100.5, 100, proportional(320)).scale, 0.05 / kTravelSteps);
 }
 
 TEST(MaxTravel, QueuesByValueAroundTheForceLayer) {

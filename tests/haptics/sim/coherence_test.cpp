@@ -170,7 +170,7 @@ const RandomMotionCase kRandomMotionCases[] = {
     {"SphereAwareNoDrifting", sphereOverPlate, glm::dvec3(0.0, 0.0, kRadius + 0.002), 1.5, true, 0.03, false},
     {"SphereUnaware", sphereOverPlate, glm::dvec3(0.0, 0.0, kRadius + 0.002), 1.5, false, 0.1, true},
     {"TallBarAware", barOverPlate, glm::dvec3(0.0, 0.0, 0.032), 0.1, true, 0.05, true},
-    {"TallBarAwareNoDrifting", barOverPlate, glm::dvec3(0.0, 0.0, 0.032), 0.1, true, 0.05, false},
+    {"TallBarAwareNoDrifting", barOverPlate, glm::dvec3(0.0, 0.0, 0.032), 0.1, true, 0.03, false},
     {"TallBarUnaware", barOverPlate, glm::dvec3(0.0, 0.0, 0.032), 0.1, false, 0.1, true},
 };
 
