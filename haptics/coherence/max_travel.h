@@ -36,9 +36,13 @@
 /// sweep would take if a queue's members stayed put. They do not: points leave a queue
 /// where the sweep tests them and join it anywhere, so the blocks just ahead of a sweep,
 /// unvisited for a whole round, hold more of them than the average (1.1 to 1.9 times the
-/// quota by queue in the seated 25 mm ball). So the sweeps count what they would take at
-/// kTravelSteps + 1 travels (SweptQueues::addTestsByTravel), and Eq. 2 takes the largest
-/// travel whose tests fit, from those counts alone: no history, no estimate.
+/// quota by queue in the seated 25 mm ball). And a sweep's share is set by the travel of
+/// the frame before (swept_queues.h), so the travel a frame allows is what the next frame
+/// must test. So each sweep counts what it would take in the next frame for kTravelSteps
+/// + 1 travels of this one (SweptQueues::addTestsByTravel), and Eq. 2 takes the largest
+/// travel for which those and the mandatory tests fit: from the queues as they stand, no
+/// history, no estimate. Everything here is noexcept and allocation-free.
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -80,9 +84,9 @@ inline constexpr int kTravelSteps = 32;
 using TestsByTravel = std::array<double, kTravelSteps + 1>;
 
 /// Eq. 2 over all pairs: `capacityTests` point tests fit in a frame, `mandatoryTests` must
-/// be done, and `tests[k]` more are taken at scale k / kTravelSteps. The largest scale
-/// whose tests fit, linear between the counted scales (a frame may take up to one step's
-/// tests over the capacity).
+/// be done, and `tests[k]` more are taken (in the next frame) at scale k / kTravelSteps.
+/// The largest scale whose tests fit, linear between the counted scales (a frame may take
+/// up to one step's tests over the capacity).
 inline TravelBudget travelScale(double capacityTests, double mandatoryTests,
                                 const TestsByTravel& tests) noexcept {
   if (mandatoryTests >= capacityTests) return {0.0, true};

@@ -125,15 +125,17 @@ void PairCoherence::sortAll(const Pointshell& shell, const Voxmap& voxmap, const
   }
   points_.clearOwed();
   chunks_.clearOwed();
+  lastTravelM_ = 0.0;
 }
 
-void PairCoherence::skipFrame() noexcept {
+void PairCoherence::skipFrame(double relativeTravelM) noexcept {
   if (chunks_.queues().count(kChunkTestNow) != chunks_.queues().pointCount()) {
     points_.queues().clear();
     chunks_.queues().assignAll(kChunkTestNow);
   }
   points_.clearOwed();
   chunks_.clearOwed();
+  lastTravelM_ = relativeTravelM;
 }
 
 void PairCoherence::setForceLayer(std::uint8_t forceLayer) noexcept {
@@ -154,7 +156,7 @@ CoherenceLoad PairCoherence::load(double fullTravelM) const noexcept {
   for (int q = 0; q < queueCountFor(forceLayer_, maxValue_); ++q) {
     const double d = pointDistanceM(q);
     if (d > 0.0) {
-      points_.addTestsByTravel(q, d, fullTravelM, load.tests);
+      points_.addTestsByTravel(q, d, fullTravelM, lastTravelM_, load.tests);
     } else {
       load.mandatory += points.count(q);
     }
@@ -162,7 +164,7 @@ CoherenceLoad PairCoherence::load(double fullTravelM) const noexcept {
   for (int q = 0; q < kChunkQueues; ++q) {
     const double d = chunkDistanceM(q);
     if (d > 0.0) {
-      chunks_.addTestsByTravel(q, d, fullTravelM, load.tests);
+      chunks_.addTestsByTravel(q, d, fullTravelM, lastTravelM_, load.tests);
     } else {
       load.mandatory += chunks_.queues().count(q);
     }
@@ -171,11 +173,11 @@ CoherenceLoad PairCoherence::load(double fullTravelM) const noexcept {
 }
 
 std::uint32_t PairCoherence::updateChunks(const Pointshell& shell, const Voxmap& voxmap,
-                                          const VoxelTransform& transform, double relativeTravelM,
-                                          std::span<std::uint32_t> scratch, VoxelPager* pager) noexcept {
+                                          const VoxelTransform& transform, std::span<std::uint32_t> scratch,
+                                          VoxelPager* pager) noexcept {
   std::uint32_t tests = 0;
   for (int q = 0; q < kChunkQueues; ++q) {
-    const std::uint32_t n = chunks_.collect(q, chunkDistanceM(q), relativeTravelM, scratch);
+    const std::uint32_t n = chunks_.collect(q, chunkDistanceM(q), lastTravelM_, scratch);
     for (std::uint32_t i = 0; i < n; ++i) {
       const std::uint32_t c = scratch[i];
       const glm::vec3 centroid = transform.apply(shell.chunkCentroidsLocal[c]);
@@ -186,11 +188,11 @@ std::uint32_t PairCoherence::updateChunks(const Pointshell& shell, const Voxmap&
   return tests;
 }
 
-std::uint32_t PairCoherence::collectDue(double relativeTravelM, std::span<std::uint32_t> due) noexcept {
+std::uint32_t PairCoherence::collectDue(std::span<std::uint32_t> due) noexcept {
   std::uint32_t n = 0;
   const int queueCount = queueCountFor(forceLayer_, maxValue_);
   for (int q = 0; q < queueCount; ++q) {
-    n += points_.collect(q, pointDistanceM(q), relativeTravelM, due.subspan(n));
+    n += points_.collect(q, pointDistanceM(q), lastTravelM_, due.subspan(n));
     dueEndByQueue_[static_cast<std::size_t>(q)] = n;
   }
   return n;

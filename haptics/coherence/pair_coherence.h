@@ -67,29 +67,28 @@ public:
   /// time); with a `pager` (paged voxmap, else null) it first makes their voxels resident.
   void sortAll(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                const std::array<std::uint8_t, 3>& fieldShifts, VoxelPager* pager);
-  /// A frame out of range.
-  void skipFrame() noexcept;
+  /// A frame out of range in which the pair may move `relativeTravelM`.
+  void skipFrame(double relativeTravelM) noexcept;
   /// Makes every point in range mandatory, to be re-sorted by its next test.
   void setForceLayer(std::uint8_t forceLayer) noexcept;
 
-  /// What the queues ask of Eq. 2 now, for a relative travel of at most `fullTravelM`
-  /// this frame.
+  /// What the queues ask of Eq. 2 now: this frame's mandatory tests, and the next frame's
+  /// sweeps if this one allows a relative travel of up to `fullTravelM`.
   CoherenceLoad load(double fullTravelM) const noexcept;
   /// Whether every chunk is collapsed: no point can reach contact before its chunk has
   /// been disgorged, so the pair allows half a chunk of travel per frame (a collapsed
   /// chunk is retested while it is still that far from being disgorged).
   bool onlyCollapsed() const noexcept;
 
-  /// Tests the due chunks for a relative travel of at most `relativeTravelM` this frame;
-  /// disgorges and collapses chunks. `scratch` has room for the chunk count. A disgorged
-  /// chunk asks `pager` (null: the voxmap is whole) for the voxmap chunks around it
-  /// (paper §5.3). Returns the chunk tests.
+  /// Tests the due chunks (due by the travel of the frame before, endFrame()); disgorges
+  /// and collapses chunks. `scratch` has room for the chunk count. A disgorged chunk asks
+  /// `pager` (null: the voxmap is whole) for the voxmap chunks around it (paper §5.3).
+  /// Returns the chunk tests.
   std::uint32_t updateChunks(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                             double relativeTravelM, std::span<std::uint32_t> scratch,
-                             VoxelPager* pager) noexcept;
+                             std::span<std::uint32_t> scratch, VoxelPager* pager) noexcept;
 
   /// Collects the due points into `due` (room for the pointshell); returns how many.
-  std::uint32_t collectDue(double relativeTravelM, std::span<std::uint32_t> due) noexcept;
+  std::uint32_t collectDue(std::span<std::uint32_t> due) noexcept;
 
   /// What testDue() did.
   struct Tested {
@@ -104,6 +103,10 @@ public:
   Tested testDue(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                  const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
                  std::span<const std::uint32_t> due, PointContact* contacts, VoxelPager* pager) noexcept;
+
+  /// Call at the end of a frame in range with the relative travel it allowed: it sets the
+  /// next frame's sweeps (swept_queues.h).
+  void endFrame(double relativeTravelM) noexcept { lastTravelM_ = relativeTravelM; }
 
 private:
   /// What a test of `chunk` finds with its centroid at `voxelOfCentroid` (voxel coordinates):
@@ -129,6 +132,7 @@ private:
   bool drifting_;
   std::vector<glm::vec3> lookupVoxel_;     // per point, where its last lookup was (voxel coordinates)
   std::vector<std::uint8_t> lookupQueue_;  // per point, the queue that lookup found; 0: none
+  double lastTravelM_ = 0.0;               // relative travel allowed in the frame before
 };
 
 }  // namespace voxhap

@@ -12,16 +12,16 @@ void SweptQueues::clearOwed() noexcept {
   std::fill(owedBlocks_.begin(), owedBlocks_.end(), 0.0);
 }
 
-double SweptQueues::owedAfter(int q, double distanceM, double travelM) const noexcept {
+double SweptQueues::owedAfter(double owedBlocks, double distanceM, double travelM) const noexcept {
   const double blocks = queues_.sweepBlockCount();
-  return std::min(blocks, owedBlocks_[static_cast<std::size_t>(q)] + blocks * travelM / distanceM);
+  return std::min(blocks, owedBlocks + blocks * travelM / distanceM);
 }
 
-std::uint32_t SweptQueues::collect(int q, double distanceM, double travelM,
+std::uint32_t SweptQueues::collect(int q, double distanceM, double lastTravelM,
                                    std::span<std::uint32_t> out) noexcept {
   if (!(distanceM > 0.0)) return queues_.takeAll(q, out);
   double& owed = owedBlocks_[static_cast<std::size_t>(q)];
-  owed = owedAfter(q, distanceM, travelM);
+  owed = owedAfter(owed, distanceM, lastTravelM);
   if (queues_.count(q) == 0) {
     owed = 0.0;  // nobody waits in an empty queue
     return 0;
@@ -31,17 +31,23 @@ std::uint32_t SweptQueues::collect(int q, double distanceM, double travelM,
   return sweep.taken;
 }
 
-void SweptQueues::addTestsByTravel(int q, double distanceM, double fullTravelM,
+void SweptQueues::addTestsByTravel(int q, double distanceM, double fullTravelM, double lastTravelM,
                                    TestsByTravel& tests) const noexcept {
   if (queues_.count(q) == 0) return;
-  std::array<std::uint32_t, kTravelSteps + 1> marks;
-  for (std::size_t k = 0; k < marks.size(); ++k) {
+  // this frame's sweep (blocks [0, marks[0])), then the next frame's after a travel of
+  // k / kTravelSteps · fullTravelM in this one (marks[k + 1])
+  const double owedNow = owedAfter(owedBlocks_[static_cast<std::size_t>(q)], distanceM, lastTravelM);
+  const double coveredNow = std::ceil(owedNow);
+  std::array<std::uint32_t, kTravelSteps + 2> marks;
+  marks[0] = static_cast<std::uint32_t>(coveredNow);
+  for (std::size_t k = 0; k <= kTravelSteps; ++k) {
     const double travelM = fullTravelM * static_cast<double>(k) / kTravelSteps;
-    marks[k] = static_cast<std::uint32_t>(std::ceil(owedAfter(q, distanceM, travelM)));
+    marks[k + 1] =
+        marks[0] + static_cast<std::uint32_t>(std::ceil(owedAfter(owedNow - coveredNow, distanceM, travelM)));
   }
-  std::array<std::uint32_t, kTravelSteps + 1> points;
+  std::array<std::uint32_t, kTravelSteps + 2> points;
   queues_.pointsAhead(q, marks, points);
-  for (std::size_t k = 0; k < marks.size(); ++k) tests[k] += points[k];
+  for (std::size_t k = 0; k <= kTravelSteps; ++k) tests[k] += points[k + 1] - points[0];
 }
 
 }  // namespace voxhap

@@ -46,7 +46,7 @@ SimWorkspace makeSimWorkspace(const SimModel& model, const SimState& state,
       coherence.sortAll(shellObject.shell, voxmap, VoxelTransform::make(shellToVoxmap, voxmap.grid()),
                         pair.fieldShifts, ws.pagerOf(pair));
     } else {
-      coherence.skipFrame();
+      coherence.skipFrame(0.0);
     }
   }
   return ws;

@@ -151,13 +151,14 @@ std::uint32_t findContacts(const SimModel& model, SimWorkspace& ws, CoherenceFra
   PairCoherence& coherence = ws.coherence[p];
   const double travelM = plan.travelScale * ws.pairFrames[p].relativeTravelBoundM;
   VoxelPager* pager = ws.pagerOf(pair);
-  plan.chunkTests += coherence.updateChunks(shell, voxmap, transform, travelM, ws.dueChunks, pager);
-  const std::uint32_t due = coherence.collectDue(travelM, ws.due);
+  plan.chunkTests += coherence.updateChunks(shell, voxmap, transform, ws.dueChunks, pager);
+  const std::uint32_t due = coherence.collectDue(ws.due);
   tested += due;
   const PairCoherence::Tested t = coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
                                                     std::span(ws.due.data(), due), ws.contacts.data(), pager);
   plan.drifted += t.drifted;
   missing += t.missing;
+  coherence.endFrame(travelM);
   return t.contacts;
 }
 
@@ -234,7 +235,8 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
   for (std::size_t p = 0; p < model.pairs.size(); ++p) {
     const PairModel& pair = model.pairs[p];
     if (!ws.pairFrames[p].inRange) {
-      if (!ws.coherence.empty()) ws.coherence[p].skipFrame();
+      if (!ws.coherence.empty())
+        ws.coherence[p].skipFrame(plan.travelScale * ws.pairFrames[p].relativeTravelBoundM);
       continue;
     }
     ContactParams params = pair.params;
