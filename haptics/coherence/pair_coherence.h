@@ -8,7 +8,7 @@
 /// point waits while others join the queue ahead of the cursor: in a random-motion test
 /// one waited 6 frames where its 2 voxels allowed 4 and was found in contact untested.
 /// The sweeps cover the pointshell's blocks at the rate the travel asks instead, which
-/// bounds every wait and takes about the quota.
+/// bounds every wait; Eq. 2 plans with what they will take (max_travel.h).
 ///
 /// Chunks (paper §5.1). A chunk of the pointshell (its points have contiguous indices)
 /// whose centroid lies at chunk distance D from the voxel-bearing chunks of the voxmap
