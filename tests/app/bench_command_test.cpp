@@ -234,10 +234,10 @@ TEST_F(BenchCommand, ScalingQuickMeasuresTwoShellSizesCoherentAndBruteForce) {
   EXPECT_NE(slurp(dir_ / "s.svg").find("<svg"), std::string::npos);
 }
 
-constexpr const char* kErrorKeys[] = {"scene",     "contact",         "voxel_size_m",    "bits",
-                                      "awareness", "coherence",       "points",          "compute_p50_us",
-                                      "gap_m",     "force_angle_deg", "abs_gap_m",       "gap_over_voxel",
-                                      "contacts",  "speed_mps",       "missed_deadlines"};
+constexpr const char* kErrorKeys[] = {"scene",     "contact",         "voxel_size_m", "bits",
+                                      "awareness", "coherence",       "points",       "compute_p50_us",
+                                      "gap_m",     "force_angle_deg", "abs_gap_m",    "gap_over_voxel",
+                                      "contacts",  "speed_mps",       "drop_m",       "missed_deadlines"};
 
 TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
   const CliRun r = voxhap({"bench", "error", "--quick", "--json", "--csv", "e.csv", "--svg", "e.svg"});
@@ -261,6 +261,9 @@ TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
     ASSERT_TRUE(row.at("force_angle_deg").is_number()) << row.dump();
     EXPECT_LT(row.at("force_angle_deg").get<double>(), 5.0) << row.dump();
     EXPECT_GT(row.at("points").get<std::int64_t>(), 0);
+    // dropped from 3 voxels above touching: what it fell and the exact gap left make those 3
+    EXPECT_NEAR(row.at("drop_m").get<double>() + row.at("gap_m").get<double>(), 3.0 * 2e-3, 0.1e-3)
+        << row.dump();
   }
   EXPECT_EQ(rows[0].at("scene"), "sphere-on-plane");
   EXPECT_EQ(rows[0].at("contact"), "paper");
