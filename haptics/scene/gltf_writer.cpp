@@ -11,6 +11,7 @@
 #include <tiny_gltf.h>
 
 #include "haptics/core/error.h"
+#include "haptics/scene/gltf_extras.h"
 
 namespace voxhap {
 namespace {
@@ -66,17 +67,6 @@ int addMesh(tinygltf::Model& model, const Part& part, int material) {
   out.primitives.push_back(primitive);
   model.meshes.push_back(out);
   return static_cast<int>(model.meshes.size() - 1);
-}
-
-tinygltf::Value objectExtras(const SceneObject& object) {
-  tinygltf::Value::Object voxhap;
-  voxhap["role"] = tinygltf::Value(std::string(roleName(object.settings.role)));
-  if (object.settings.densityKgPerM3) voxhap["density"] = tinygltf::Value(*object.settings.densityKgPerM3);
-  if (object.settings.pointOffsetM) voxhap["point_offset"] = tinygltf::Value(*object.settings.pointOffsetM);
-  if (object.settings.forceLayer) voxhap["force_layer"] = tinygltf::Value(int{*object.settings.forceLayer});
-  tinygltf::Value::Object extras;
-  extras["voxhap"] = tinygltf::Value(std::move(voxhap));
-  return tinygltf::Value(std::move(extras));
 }
 
 }  // namespace
