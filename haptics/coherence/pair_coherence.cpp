@@ -227,7 +227,7 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
                                         glm::length(voxels[k] - lookupVoxel_[point])
                                   : 0.0f;
         if (guaranteedVoxels[k] >= 2.0f) continue;
-        ijks[k] = glm::ivec3(glm::floor(voxels[k]));
+        ijks[k] = voxelOf(voxels[k]);
         words[k] = voxmap.word(ijks[k]);
       }
       for (std::uint32_t k = 0; k < batch; ++k, ++at) {
@@ -247,11 +247,14 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
           tested.lastAskedChunk = chunk;  // neighbours miss together: one request for a run of them
           continue;
         }
-        const std::uint8_t shift = fieldShifts[static_cast<std::size_t>(shell.features[point])];
-        const auto value = static_cast<std::uint8_t>((words[k] >> shift) & fieldMask);
+        const std::uint8_t value =
+            fieldValue(words[k], fieldShifts[static_cast<std::size_t>(shell.features[point])], fieldMask);
         // value − 1 wraps far (0) to 255, so one compare keeps [1, sampledLayer]
         if (static_cast<std::uint8_t>(value - 1u) < sampledLayer) {
-          contacts[tested.contacts++] = {point, ijks[k], value};
+          PointContact& contact = contacts[tested.contacts++];  // field by field, as samplePoints
+          contact.point = point;
+          contact.ijkVoxel = ijks[k];
+          contact.value = value;
         }
         const int found = queueForValue(value, forceLayer_, maxValue_);
         queues.move(point, q, found);

@@ -27,12 +27,20 @@ std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, cons
 std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                            const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t maxValue,
                            std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept {
+  const VoxelWord fieldMask = voxmap.encoding().fieldMask();
   std::uint32_t found = 0;
   for (std::uint32_t i = first; i < last; ++i) {
-    const PointSample sample = samplePointAt(shell, voxmap, transform, fieldShifts, i);
-    // value − 1 wraps far (0) to 255, so one compare keeps [1, maxValue]
-    if (static_cast<std::uint8_t>(sample.value - 1u) < maxValue)
-      contacts[found++] = {i, sample.ijkVoxel, sample.value};
+    const glm::ivec3 ijk = voxelOf(transform.apply(shell.positionsLocal[i]));
+    const std::uint8_t value =
+        fieldValue(voxmap.word(ijk), fieldShifts[static_cast<std::size_t>(shell.features[i])], fieldMask);
+    // value − 1 wraps far (0) to 255, so one compare keeps [1, maxValue]. Field by field:
+    // a PointSample built and copied whole stalled on its narrow stores (perf, pointTests)
+    if (static_cast<std::uint8_t>(value - 1u) < maxValue) {
+      PointContact& contact = contacts[found++];
+      contact.point = i;
+      contact.ijkVoxel = ijk;
+      contact.value = value;
+    }
   }
   return found;
 }

@@ -46,14 +46,22 @@ struct PointSample {
   bool missing;         ///< its chunk is paged out (value meaningless)
 };
 
+/// The voxel that voxel coordinates `voxelCoords` fall in.
+inline glm::ivec3 voxelOf(const glm::vec3& voxelCoords) noexcept {
+  return {static_cast<int>(std::floor(voxelCoords.x)), static_cast<int>(std::floor(voxelCoords.y)),
+          static_cast<int>(std::floor(voxelCoords.z))};
+}
+
+/// The field at `shift` of a voxel word; `fieldMask` is VoxelEncoding::fieldMask().
+inline std::uint8_t fieldValue(VoxelWord word, std::uint8_t shift, VoxelWord fieldMask) noexcept {
+  return static_cast<std::uint8_t>((word >> shift) & fieldMask);
+}
+
 /// Reads the field at `shift` where voxel coordinates `voxelCoords` fall.
 inline PointSample sampleAt(const Voxmap& voxmap, const glm::vec3& voxelCoords, std::uint8_t shift) noexcept {
-  const glm::ivec3 ijk(static_cast<int>(std::floor(voxelCoords.x)),
-                       static_cast<int>(std::floor(voxelCoords.y)),
-                       static_cast<int>(std::floor(voxelCoords.z)));
+  const glm::ivec3 ijk = voxelOf(voxelCoords);
   const VoxelWord word = voxmap.word(ijk);
-  return {ijk, static_cast<std::uint8_t>((word >> shift) & voxmap.encoding().fieldMask()),
-          word == Voxmap::kMissingWord};
+  return {ijk, fieldValue(word, shift, voxmap.encoding().fieldMask()), word == Voxmap::kMissingWord};
 }
 
 /// Tests point `index` of `shell`; `fieldShifts` comes from fieldShiftsByFeature. Inline:
