@@ -25,14 +25,17 @@ glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8
     return value == kValueFar ? e.maxValue() + 1 : value;
   };
   const int centre = valueAt(ijk);
-  glm::dvec3 g(0.0);
-  for (int axis = 0; axis < 3; ++axis) {
-    glm::ivec3 step(0);
-    step[axis] = 1;
+  // whole vectors, not one component at a time: a vector written by component and read
+  // whole stalled on store forwarding (perf, contactWrenches)
+  auto fallAlong = [&](const glm::ivec3& step) {
     const int below = valueAt(ijk - step);
     const int above = valueAt(ijk + step);
-    g[axis] = (below < 0 ? centre : below) - (above < 0 ? centre : above);
-  }
+    return double((below < 0 ? centre : below) - (above < 0 ? centre : above));
+  };
+  const double x = fallAlong({1, 0, 0});  // in this order: the first missing neighbour is noted
+  const double y = fallAlong({0, 1, 0});
+  const double z = fallAlong({0, 0, 1});
+  const glm::dvec3 g(x, y, z);
   const double length = glm::length(g);
   return length > 0.0 ? g / length : g;
 }
