@@ -159,6 +159,10 @@ TEST_F(BenchCommand, RotationTurnsTheBallAtItsLimitWhenCapacityIsAmple) {
     EXPECT_NEAR(row.at("frames").get<double>(), limitFrames, 0.05 * limitFrames);
     EXPECT_GE(row.at("rotation_s").get<double>(), row.at("limit_s").get<double>() * 0.99);
     EXPECT_GT(row.at("mean_contacts").get<double>(), 0.0);
+    // the fixed capacity, and the contacts among the mandatory tests
+    EXPECT_DOUBLE_EQ(row.at("mean_capacity").get<double>(), 1e6);
+    EXPECT_GE(row.at("mean_mandatory").get<double>(), row.at("mean_contacts").get<double>());
+    EXPECT_LT(row.at("mean_mandatory").get<double>(), 1e6);
     // seated as a mating pair: its own force layer, the surface voxels, and points a voxel inward
     EXPECT_EQ(row.at("force_layer"), 2);
     EXPECT_DOUBLE_EQ(row.at("point_offset_m").get<double>(), -0.002);
@@ -176,6 +180,8 @@ TEST_F(BenchCommand, RotationWithTooSmallACapacityMissesEveryDeadlineButStillTur
   // every frame is short of capacity: the first stops the ball, the rest abandon
   // time-criticality and turn it at full MaxTravel
   EXPECT_EQ(row.at("missed_deadlines"), row.at("frames"));
+  EXPECT_DOUBLE_EQ(row.at("mean_capacity").get<double>(), 1.0);
+  EXPECT_GT(row.at("mean_mandatory").get<double>(), 1.0);
   EXPECT_FALSE(row.at("rotation_s").is_null());
   const double limitFrames = row.at("limit_s").get<double>() / 1e-3;
   EXPECT_NEAR(row.at("frames").get<double>(), limitFrames, 0.05 * limitFrames + 1);
