@@ -15,6 +15,7 @@
 #include "haptics/core/parallel.h"
 #include "haptics/geometry/embree_scene.h"
 #include "haptics/voxel/chunk_distance.h"
+#include "haptics/voxel/chunk_footprint.h"
 #include "haptics/voxel/feature_rasterizer.h"
 #include "haptics/voxel/hyperchunk_transform.h"
 #include "haptics/voxel/interior_classifier.h"
@@ -329,25 +330,25 @@ VoxelGrid gridAround(const Bounds& boundsLocal, double voxelSizeM, int paddingVo
   return grid;
 }
 
-std::uint64_t estimateVoxelizeBytes(double surfaceAreaM2, std::uint64_t triangles,
-                                    const VoxelizeOptions& options) {
+VoxelizeEstimate estimateVoxelizeBytes(std::span<const TriangleMesh* const> meshes, const VoxelGrid& grid,
+                                       const VoxelizeOptions& options, std::uint64_t budgetBytes) {
   const double s = options.voxelSizeM;
-  const double chunkM = s * kChunkEdgeVoxels;
-  // chunks the surface passes through (a tilted surface meets up to ~√3 times more)
-  const double surfaceChunks = 1.8 * surfaceAreaM2 / (chunkM * chunkM) + 0.5 * static_cast<double>(triangles);
-  // mixed chunks: the surface's and one chunk of distance field on each side
-  const double mixedChunks = 3.0 * surfaceChunks;
-  const double featureBytes = surfaceChunks * kVoxelsPerChunk;
-  const double voxmapBytes = mixedChunks * kVoxelsPerChunk * options.encoding.bytesPerWord();
-  // the planes of the mixed chunks the surface's area makes (the triangle count's share of
-  // surfaceChunks is a bound for tiny triangles, far above what they take)
-  const double planeBytes = options.surfacePlanes ? 3.0 * 1.8 * surfaceAreaM2 / (chunkM * chunkM) *
-                                                        kVoxelsPerChunk * double(sizeof(SurfacePlane))
-                                                  : 0.0;
-  const double crossingBytes = 3.0 * 1.2 * surfaceAreaM2 / (s * s) * 8.0;
+  // per surface chunk: its feature bits; per mixed chunk: its words twice (the
+  // hyperchunks' and the assembled array), and its planes
+  const double featureBytesPerChunk = kVoxelsPerChunk;
+  const double mixedBytesPerChunk = kVoxelsPerChunk * (2.0 * options.encoding.bytesPerWord() +
+                                                       (options.surfacePlanes ? sizeof(SurfacePlane) : 0));
+  const int reachChunks = (options.encoding.rangeVoxels + kChunkEdgeVoxels - 1) / kChunkEdgeVoxels;
+  const auto mostSurfaceChunks =
+      static_cast<std::uint64_t>(double(budgetBytes) / (featureBytesPerChunk + mixedBytesPerChunk));
+  const ChunkFootprint chunks = chunkFootprint(meshes, grid, reachChunks, mostSurfaceChunks);
+  const double crossingBytes = 3.0 * 1.2 * surfaceArea(meshes) / (s * s) * 8.0;
+  std::uint64_t triangles = 0;
+  for (const TriangleMesh* mesh : meshes) triangles += mesh->triangles.size();
   const double meshBytes = static_cast<double>(triangles) * 200.0;
-  return static_cast<std::uint64_t>(featureBytes + 2.0 * voxmapBytes + planeBytes + crossingBytes +
-                                    meshBytes);
+  const double bytes = double(chunks.surfaceChunks) * featureBytesPerChunk +
+                       double(chunks.mixedChunks) * mixedBytesPerChunk + crossingBytes + meshBytes;
+  return {static_cast<std::uint64_t>(bytes), !chunks.complete};
 }
 
 void checkVoxelizeOptions(const VoxelizeOptions& options) {
@@ -380,20 +381,20 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
                 std::to_string(static_cast<long long>(longestVoxels)) +
                 " voxels along one axis (at most 16777216)");
   }
+  const VoxelGrid grid = gridAround(bounds, options.voxelSizeM, options.encoding.rangeVoxels + 1);
   const std::uint64_t budget =
       options.memoryBudgetBytes ? options.memoryBudgetBytes : physicalMemoryBytes() / 4 * 3;
-  const std::uint64_t estimate = estimateVoxelizeBytes(surfaceArea(meshes), triangles, options);
-  if (estimate > budget) {
-    throw Error("voxel size " + std::to_string(options.voxelSizeM * 1e3) + " mm would need about " +
-                gib(estimate) + " to voxelize (budget " + gib(budget) + "); choose a larger voxel size");
+  const VoxelizeEstimate estimate = estimateVoxelizeBytes(meshes, grid, options, budget);
+  if (estimate.bytes > budget) {
+    throw Error("voxel size " + std::to_string(options.voxelSizeM * 1e3) + " mm would need " +
+                (estimate.lowerBound ? "more than " : "about ") + gib(estimate.bytes) +
+                " to voxelize (budget " + gib(budget) + "); choose a larger voxel size");
   }
 
   auto stage = [&](double begin, double end) -> ProgressFn {
     if (!progress) return {};
     return [&progress, begin, end](double f) { progress(begin + (end - begin) * f); };
   };
-  const VoxelGrid grid = gridAround(bounds, options.voxelSizeM, options.encoding.rangeVoxels + 1);
-
   std::vector<FeatureGeometry> geometry;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     geometry.push_back(

@@ -55,9 +55,16 @@ struct VoxelizedObject {
   VoxelizeStats stats;
 };
 
-/// Rough peak memory of voxelizing meshes of this total surface area, bytes.
-std::uint64_t estimateVoxelizeBytes(double surfaceAreaM2, std::uint64_t triangles,
-                                    const VoxelizeOptions& options);
+struct VoxelizeEstimate {
+  std::uint64_t bytes = 0;
+  bool lowerBound = false;  ///< counting stopped at the budget: it would take more
+};
+
+/// Peak memory of voxelizing `meshes` into `grid`, a little above what it takes: from the
+/// chunks their triangles pass through (chunk_footprint.h) and their area. Counting stops
+/// once the estimate is sure to exceed `budgetBytes`: then it is a lower bound above it.
+VoxelizeEstimate estimateVoxelizeBytes(std::span<const TriangleMesh* const> meshes, const VoxelGrid& grid,
+                                       const VoxelizeOptions& options, std::uint64_t budgetBytes);
 
 /// Throws voxhap::Error when `options` are invalid (voxel size not a positive number,
 /// unsupported bit width or range).
