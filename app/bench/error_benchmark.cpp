@@ -12,9 +12,9 @@
 //                    crossed rods; for the ball and the peg the resultant that balances
 //                    gravity;
 //   compute_p50_us   the median time of step() over the run.
-// Every point shell is taken at the voxel size of the static voxmap (the ball's displaced
-// half a voxel inward, as in the rotation benchmark). With 2-bit fields the largest value
-// is the first free layer, so the force layer moves there (3 instead of 4).
+// Every point shell is taken at the voxel size of the static voxmap, or --points-per-voxel
+// times finer (the ball's displaced half a voxel inward, as in the rotation benchmark). With 2-bit fields the
+// largest value is the first free layer, so the force layer moves there (3 instead of 4).
 
 #include <algorithm>
 #include <chrono>
@@ -133,6 +133,7 @@ std::vector<BenchColumn> errorColumns() {
       {"bits", "bits", BenchStyle::Count},
       {"awareness", "aware", BenchStyle::Count},
       {"coherence", "coherent", BenchStyle::Count},
+      {"point_spacing_m", "spacing mm", BenchStyle::Millimetres, 3},
       {"points", "points", BenchStyle::Count},
       {"compute_p50_us", "p50 us", BenchStyle::Fixed, 1},
       {"gap_m", "gap mm", BenchStyle::Millimetres, 3},
@@ -226,8 +227,16 @@ HandleInput rodHandleAt(double tS, double startGapM) {
   return h;
 }
 
-void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, double voxelM, int bits,
-                  bool aware, bool surface, bool coherent, BenchTable& table) {
+/// How one row's model is built, beside its scene and voxel size.
+struct ModelSetting {
+  int bits;
+  bool aware;
+  bool surface;        ///< contact by surface planes, else the paper's
+  int pointsPerVoxel;  ///< point spacing = voxel size / pointsPerVoxel
+};
+
+void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, double voxelM,
+                  const ModelSetting& setting, bool coherent, BenchTable& table) {
   model.coherence.enabled = coherent;
   LocalSimulation sim(model);
   const SimState& state = sim.state;
@@ -246,11 +255,12 @@ void measureModel(const ErrorScene& es, const Scene& scene, SimModel& model, dou
 
   const std::size_t r = table.addRow();
   table.set(r, "scene", std::string(es.name));
-  table.set(r, "contact", std::string(surface ? "surface" : "paper"));
+  table.set(r, "contact", std::string(setting.surface ? "surface" : "paper"));
   table.set(r, "voxel_size_m", voxelM);
-  table.set(r, "bits", std::int64_t{bits});
-  table.set(r, "awareness", std::int64_t{aware ? 1 : 0});
+  table.set(r, "bits", std::int64_t{setting.bits});
+  table.set(r, "awareness", std::int64_t{setting.aware ? 1 : 0});
   table.set(r, "coherence", std::int64_t{coherent ? 1 : 0});
+  table.set(r, "point_spacing_m", voxelM / setting.pointsPerVoxel);
   table.set(r, "points", static_cast<std::int64_t>(model.objects[0].shell.size()));
   table.set(r, "compute_p50_us", percentile(computeUs, 0.5));
   if (std::isfinite(gap)) {
@@ -276,6 +286,7 @@ struct ErrorArgs {
   std::vector<double> voxelSizesM;  ///< --voxel-size, in order
   std::vector<int> bitWidths;       ///< --bits, in order
   std::vector<bool> surface;        ///< --contact, in order: surface planes (true) or the paper's
+  std::vector<int> pointsPerVoxel;  ///< --points-per-voxel, in order
   SimOptions sim;                   ///< --capacity and the cache
 };
 
@@ -307,8 +318,17 @@ BenchTable runError(const ErrorArgs& args, Console& console) {
   }
   std::vector<bool> contacts = args.surface;
   if (contacts.empty()) contacts = {false, true};
-  const std::size_t total =
-      chosen.size() * sizes.size() * bitWidths.size() * awareness.size() * contacts.size();
+  std::vector<int> densities = args.pointsPerVoxel;
+  if (densities.empty()) densities = {1};
+  std::vector<ModelSetting> settings;
+  for (const int bits : bitWidths) {
+    for (const bool aware : awareness) {
+      for (const bool surface : contacts) {
+        for (const int density : densities) settings.push_back({bits, aware, surface, density});
+      }
+    }
+  }
+  const std::size_t total = chosen.size() * sizes.size() * settings.size();
   std::size_t done = 0;
   const ProgressFn progress = console.progress("error");
   for (const ErrorScene* es : chosen) {
@@ -318,28 +338,25 @@ BenchTable runError(const ErrorArgs& args, Console& console) {
         table.extra["ball_seat_gap_m"] =
             signedGapM(scene, *scene.find(es->moving), Pose{glm::dvec3(0.0), identityQuat()});
       }
-      for (const int bits : bitWidths) {
-        for (const bool aware : awareness) {
-          for (const bool surface : contacts) {
-            SceneModelOptions options;
-            options.staticVoxelSizeM = voxelM;
-            options.pointSpacingM = voxelM;
-            options.bitsPerField = bits;
-            options.pointDisplacementM = es->displaceHalfVoxel ? -0.5 * voxelM : 0.0;
-            options.sim.gravityWorld = kGravity;
-            options.sim.geometricalAwareness = aware;
-            options.sim.surfaceContact = surface;
-            if (!surface)
-              options.sim.forceLayer = std::min(kDefaultForceLayer, VoxelEncoding::forBits(bits).maxValue());
-            options.sim.coherence.capacityTests = capacity;
-            useVoxelCache(options, cache, console);
-            SimModel model = buildSceneModel(scene, {es->moving}, options);
-            model.objects[0].coupled = es->held;
-            for (const bool coherent : {true, false})
-              measureModel(*es, scene, model, voxelM, bits, aware, surface, coherent, table);
-            if (progress) progress(static_cast<double>(++done) / static_cast<double>(total));
-          }
-        }
+      for (const ModelSetting& setting : settings) {
+        SceneModelOptions options;
+        options.staticVoxelSizeM = voxelM;
+        options.pointSpacingM = voxelM / setting.pointsPerVoxel;
+        options.bitsPerField = setting.bits;
+        options.pointDisplacementM = es->displaceHalfVoxel ? -0.5 * voxelM : 0.0;
+        options.sim.gravityWorld = kGravity;
+        options.sim.geometricalAwareness = setting.aware;
+        options.sim.surfaceContact = setting.surface;
+        if (!setting.surface)
+          options.sim.forceLayer =
+              std::min(kDefaultForceLayer, VoxelEncoding::forBits(setting.bits).maxValue());
+        options.sim.coherence.capacityTests = capacity;
+        useVoxelCache(options, cache, console);
+        SimModel model = buildSceneModel(scene, {es->moving}, options);
+        model.objects[0].coupled = es->held;
+        for (const bool coherent : {true, false})
+          measureModel(*es, scene, model, voxelM, setting, coherent, table);
+        if (progress) progress(static_cast<double>(++done) / static_cast<double>(total));
       }
     }
   }
@@ -355,17 +372,17 @@ Benchmark errorBenchmark() {
   b.summary = "Time against error: gap and force direction at rest in the analytic scenes.";
   b.usage =
       "[--quick] [--scene NAME …] [--voxel-size LENGTH …] [--bits 2|4|8 …] [--contact paper|surface …]\n"
-      "       [--capacity N] [--cache-dir DIR] [--no-cache]";
+      "       [--points-per-voxel N …] [--capacity N] [--cache-dir DIR] [--no-cache]";
   b.description =
       "Sphere on plane, box on plane, ball in socket (built-in, ball seated, points half a\n"
       "voxel inward), peg in hole (built-in, 0.2 mm clearance, the peg dropped from 1 mm above\n"
       "the mouth) and crossed square rods (the upper held by its handle, lowered onto the\n"
       "exact touching pose), swept over voxel sizes 2, 1, 0.5 and 0.25 mm (points at the\n"
-      "same spacing), 2-, 4- and 8-bit fields (2-bit: force layer 3, the only free layer),\n"
-      "geometrical awareness on and off, the paper's contact (the voxels' tangent planes) and\n"
-      "contact finer than a voxel (exact surface planes kept with the voxels), and coherence\n"
-      "on (capacity measured online unless --capacity) and off. Free objects fall from 3\n"
-      "voxels above touching under gravity.\n\n"
+      "same spacing, or --points-per-voxel N times finer), 2-, 4- and 8-bit fields (2-bit:\n"
+      "force layer 3, the only free layer), geometrical awareness on and off, the paper's\n"
+      "contact (the voxels' tangent planes) and contact finer than a voxel (exact surface\n"
+      "planes kept with the voxels), and coherence on (capacity measured online unless\n"
+      "--capacity) and off. Free objects fall from 3 voxels above touching under gravity.\n\n"
       "After settling: gap_m, the signed gap between the exact meshes at the final pose from\n"
       "Embree (closest distances of vertices and 20 um edge samples of either surface to\n"
       "the other; negative: the deepest such point inside the other), force_angle_deg, the\n"
@@ -375,12 +392,17 @@ Benchmark errorBenchmark() {
       "far the moving object's centre fell: the peg has entered its hole when it dropped\n"
       "more than the 1 mm it hung above the mouth) and missed deadlines. The SVG plots\n"
       "compute_p50_us against |gap_m| (floored at 1 um), one series per contact.\n\n"
+      "Contact finer than a voxel pushes a point from 0.75 point spacings off the surface, so\n"
+      "its rest gap follows the spacing: with points a voxel apart a sphere or a box rests\n"
+      "0.3 to 0.6 voxel off the plane, with --points-per-voxel 2 about 0.2 voxel.\n\n"
       "--quick: sphere and box on plane at 2 mm, 4-bit, aware, both contacts, coherence on\n"
       "and off.\n\n"
       "Examples:\n"
       "  voxhap bench error --quick --json\n"
       "  voxhap bench error --csv error.csv --svg error.svg\n"
-      "  voxhap bench error --scene crossed-rods --voxel-size 0.5mm --bits 4 --contact surface";
+      "  voxhap bench error --scene crossed-rods --voxel-size 0.5mm --bits 4 --contact surface\n"
+      "  voxhap bench error --voxel-size 1mm --bits 4 --contact surface --points-per-voxel 1 \\\n"
+      "      --points-per-voxel 2";
   b.addOptions = [](CLI::App& command) -> BenchRunFn {
     auto args = std::make_shared<ErrorArgs>();
     command.add_flag("--quick", args->quick, "a small subset for CI (see above)");
@@ -410,6 +432,13 @@ Benchmark errorBenchmark() {
                         if (kind != "paper" && kind != "surface")
                           throw UsageError("--contact wants paper or surface, got " + kind);
                         surface.push_back(kind == "surface");
+                      });
+    addRepeatedOption(command, "--points-per-voxel", "N",
+                      "points per voxel edge: point spacing = voxel size / N, 1 to 4 (repeatable; default 1)",
+                      [&densities = args->pointsPerVoxel](const std::string& text) {
+                        const auto n = parseUnsigned(text, "points-per-voxel");
+                        if (n < 1 || n > 4) throw UsageError("--points-per-voxel wants 1 to 4, got " + text);
+                        densities.push_back(static_cast<int>(n));
                       });
     addSimOptions(command, args->sim, {SimOption::Capacity, SimOption::Cache});
     command.get_option("--capacity")

@@ -240,10 +240,10 @@ TEST_F(BenchCommand, ScalingQuickMeasuresTwoShellSizesCoherentAndBruteForce) {
   EXPECT_NE(slurp(dir_ / "s.svg").find("<svg"), std::string::npos);
 }
 
-constexpr const char* kErrorKeys[] = {"scene",     "contact",         "voxel_size_m", "bits",
-                                      "awareness", "coherence",       "points",       "compute_p50_us",
-                                      "gap_m",     "force_angle_deg", "abs_gap_m",    "gap_over_voxel",
-                                      "contacts",  "speed_mps",       "drop_m",       "missed_deadlines"};
+constexpr const char* kErrorKeys[] = {
+    "scene",           "contact",  "voxel_size_m",   "bits",   "awareness",       "coherence",
+    "point_spacing_m", "points",   "compute_p50_us", "gap_m",  "force_angle_deg", "abs_gap_m",
+    "gap_over_voxel",  "contacts", "speed_mps",      "drop_m", "missed_deadlines"};
 
 TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
   const CliRun r = voxhap({"bench", "error", "--quick", "--json", "--csv", "e.csv", "--svg", "e.svg"});
@@ -259,6 +259,7 @@ TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
     EXPECT_EQ(row.at("bits"), 4);
     EXPECT_EQ(row.at("awareness"), 1);
     EXPECT_DOUBLE_EQ(row.at("voxel_size_m").get<double>(), 2e-3);
+    EXPECT_DOUBLE_EQ(row.at("point_spacing_m").get<double>(), 2e-3);
     // at rest on the plane: clear of it, by no more than the force layer's reach
     ASSERT_TRUE(row.at("gap_m").is_number()) << row.dump();
     EXPECT_GT(row.at("gap_m").get<double>(), 0.0) << row.dump();
@@ -284,11 +285,28 @@ TEST_F(BenchCommand, ErrorQuickRestsSphereAndBoxOnThePlaneNearTheForceLayer) {
   EXPECT_NE(slurp(dir_ / "e.svg").find("surface"), std::string::npos);
 }
 
+// Issue 13's rest-gap target for contact finer than a voxel, with points half a voxel apart.
+TEST_F(BenchCommand, ErrorWithTwoPointsPerVoxelRestsSurfaceContactWithinAQuarterVoxel) {
+  const CliRun r =
+      voxhap({"bench", "error", "--scene", "sphere-on-plane", "--scene", "box-on-plane", "--voxel-size",
+              "1mm", "--bits", "4", "--contact", "surface", "--points-per-voxel", "2", "--json"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::ordered_json rows = nlohmann::ordered_json::parse(r.out).at("rows");
+  ASSERT_EQ(rows.size(), 8u);  // two scenes, awareness on and off, coherence on and off
+  for (const nlohmann::ordered_json& row : rows) {
+    EXPECT_DOUBLE_EQ(row.at("point_spacing_m").get<double>(), 0.5e-3);
+    ASSERT_TRUE(row.at("gap_m").is_number()) << row.dump();
+    EXPECT_GT(row.at("gap_m").get<double>(), 0.0) << row.dump();
+    EXPECT_LE(row.at("gap_over_voxel").get<double>(), 0.25) << row.dump();
+  }
+}
+
 TEST_F(BenchCommand, ErrorRefusesAnUnknownSceneOrBitWidthBeforeMeasuring) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"bench", "error", "--scene", "teapot"},
         std::vector<std::string>{"bench", "error", "--bits", "3"},
-        std::vector<std::string>{"bench", "error", "--contact", "exact"}}) {
+        std::vector<std::string>{"bench", "error", "--contact", "exact"},
+        std::vector<std::string>{"bench", "error", "--points-per-voxel", "5"}}) {
     const CliRun r = voxhap(args);
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
@@ -363,7 +381,8 @@ constexpr const char* kExtractionKeys[] = {"voxel_size_m",
                                            "exact_wall_s",
                                            "mean_travel_scale",
                                            "actuator_progress_m",
-                                           "path_length_m"};
+                                           "path_length_m",
+                                           "error"};
 
 // The landing gear takes minutes to generate and voxelize in a fresh cache: the quick row
 // runs on the committed peg-in-hole scene instead (the peg lifted out of its hole), which
@@ -395,6 +414,7 @@ TEST_F(BenchCommand, ExtractionQuickPrintsOneRowWithEveryKey) {
   EXPECT_GE(row.at("max_penetration_m").get<double>(), 0.0);
   EXPECT_GT(row.at("exact_wall_s").get<double>(), 0.0);
   EXPECT_LT(row.at("exact_wall_s").get<double>(), row.at("wall_s").get<double>());
+  EXPECT_TRUE(row.at("error").is_null()) << row.dump();
 }
 
 }  // namespace
