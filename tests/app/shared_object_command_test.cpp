@@ -18,7 +18,9 @@
 #include <cstdio>
 #include <fstream>
 #include <numbers>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -405,6 +407,38 @@ bool allSeeDivergence(std::vector<std::unique_ptr<net::FrontendClient>>& clients
   return false;
 }
 
+/// Whether `o` shows the middle box's two instances, at `at0` and `at1`: the one its peer
+/// collides with and, marked, the other. `mine` is where the peer's own instance is, or
+/// null for the watcher (it follows the lowest-numbered sharer).
+bool showsBothInstances(const pb::ObjectState& o, const glm::dvec3& at0, const glm::dvec3& at1,
+                        const glm::dvec3* mine) {
+  if (o.other_instances_size() != 1) return false;
+  const auto near = [](const glm::dvec3& a, const glm::dvec3& b) { return glm::length(a - b) < 0.001; };
+  const glm::dvec3 shown = positionOf(o), other = net::fromProto(o.other_instances(0)).position;
+  const bool both = (near(shown, at0) && near(other, at1)) || (near(shown, at1) && near(other, at0));
+  return both && (mine == nullptr || near(shown, *mine));
+}
+
+/// Waits, at most 10 s, until the two sharers' and the watcher's `clients` each show both
+/// instances; returns "" then, or what the last look found wrong. It polls: peers see each
+/// other's moves a few frames late, and s0's box may still be settling when the flag comes up.
+std::string whatDoesNotShowBothInstances(std::vector<std::unique_ptr<net::FrontendClient>>& clients) {
+  std::string wrong;
+  for (const auto giveUp = std::chrono::steady_clock::now() + 10s; std::chrono::steady_clock::now() < giveUp;
+       std::this_thread::sleep_for(50ms)) {
+    wrong.clear();
+    const glm::dvec3 at0 = middleOf(*clients[0]), at1 = middleOf(*clients[1]);
+    const std::vector<const glm::dvec3*> mine = {&at0, &at1, nullptr};
+    for (std::size_t k = 0; k < clients.size() && wrong.empty(); ++k) {
+      const pb::ObjectState o = newestUpdate(*clients[k]).objects(kMiddle);
+      if (!showsBothInstances(o, at0, at1, mine[k]))
+        wrong = "client " + std::to_string(k) + ": " + o.DebugString();
+    }
+    if (wrong.empty()) return wrong;
+  }
+  return wrong;
+}
+
 TEST_F(SharedObjectCommand, AWallBetweenTwoInstancesIsFlaggedEverywhereAndNotPushedThroughThenCleared) {
   Peer s0 = startPeer("s0", {"--share", "middle", "--name", "s0"});
   ASSERT_NE(s0.udpPort, 0);
@@ -436,20 +470,7 @@ TEST_F(SharedObjectCommand, AWallBetweenTwoInstancesIsFlaggedEverywhereAndNotPus
   slideHandle(*clients[0], "middle", up, over);
   slideHandle(*clients[0], "middle", over, beyond);
   EXPECT_TRUE(allSeeDivergence(clients, true));
-  // every peer also shows, marked, the instance it does not collide with: each sharer the
-  // other's, the watcher the one it does not follow (it follows the lowest-numbered sharer)
-  const glm::dvec3 at0 = middleOf(*clients[0]), at1 = middleOf(*clients[1]);
-  const auto near = [](const glm::dvec3& a, const glm::dvec3& b) { return glm::length(a - b) < 0.001; };
-  for (std::size_t k = 0; k < clients.size(); ++k) {
-    const pb::ObjectState o = newestUpdate(*clients[k]).objects(kMiddle);
-    ASSERT_EQ(o.other_instances_size(), 1) << k << ": " << o.DebugString();
-    const glm::dvec3 shown = positionOf(o), other = net::fromProto(o.other_instances(0)).position;
-    EXPECT_TRUE((near(shown, at0) && near(other, at1)) || (near(shown, at1) && near(other, at0)))
-        << k << ": " << o.DebugString();
-    if (k < 2) {
-      EXPECT_TRUE(near(shown, k == 0 ? at0 : at1)) << k << ": " << o.DebugString();
-    }
-  }
+  EXPECT_EQ(whatDoesNotShowBothInstances(clients), "");
   std::this_thread::sleep_for(1s);
   watching = false;
   watch.join();
