@@ -140,7 +140,7 @@ Benchmark extractionBenchmark() {
       "  1.0 / 2.5 mm    (--quick)\n"
       "  0.7 / 1.25 mm   (the paper's finer landing-gear row)\n"
       "  0.5 / 1.0 mm\n"
-      "  0.35 / 0.7 mm   (voxelizing the gear takes about 20 GiB with the surface planes of\n"
+      "  0.35 / 0.7 mm   (voxelizing the gear peaks at about 12 GiB with the surface planes of\n"
       "                  contact finer than a voxel, 9 GiB without: --paper-contact)\n\n"
       "Each row is one `voxhap extract` run (see `voxhap extract --help` for the path and how\n"
       "the exact penetration is measured): the model is built through the voxel cache (a cold\n"

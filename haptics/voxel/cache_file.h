@@ -30,7 +30,9 @@ namespace voxhap {
 /// Bump whenever what a cache file holds, or how it is made, changes.
 /// 2: keys and checksums are XXH3-128 (ContentHash).
 /// 3: voxmaps end with their surface planes (surface_planes.h), none when not asked for.
-inline constexpr std::uint32_t kCacheFormatVersion = 3;
+/// 4: the surface planes sparse: a bit per voxel of the mixed chunks, then the planes of
+///    the voxels whose bit is set (sparse_surface_planes.h).
+inline constexpr std::uint32_t kCacheFormatVersion = 4;
 
 /// What a cache file holds.
 enum class CacheKind : std::uint32_t { Voxmap = 1, Pointshell = 2 };

@@ -27,6 +27,7 @@ struct SurfacePlane {
   static SurfacePlane make(double distanceVoxels, const glm::dvec3& outwardUnit);
 
   bool valid() const noexcept { return distance != kNone; }
+  bool operator==(const SurfacePlane&) const = default;
   double distanceVoxels() const noexcept { return distance / kDistanceStepsPerVoxel; }
   glm::dvec3 outwardUnit() const noexcept {
     return glm::dvec3(outward[0], outward[1], outward[2]) / kDirectionSteps;

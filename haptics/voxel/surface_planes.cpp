@@ -23,17 +23,12 @@ SurfacePlane SurfacePlane::make(double distanceVoxels, const glm::dvec3& outward
 
 namespace {
 
-/// Where a mixed chunk sits: its block of words and its chunk coordinates.
-struct MixedChunk {
-  std::uint32_t block;
-  glm::ivec3 ijkChunk;
-};
-
-std::vector<MixedChunk> mixedChunks(const Voxmap& voxmap) {
+/// Where each mixed chunk sits, by its block of words: its chunk coordinates.
+std::vector<glm::ivec3> chunkOfBlock(const Voxmap& voxmap) {
   const glm::ivec3 dims = voxmap.grid().dimsHyper;
   const std::span<const std::uint32_t> hyper = voxmap.hyperEntries();
   const std::span<const std::uint32_t> chunks = voxmap.chunkEntries();
-  std::vector<MixedChunk> out;
+  std::vector<glm::ivec3> out(voxmap.mixedChunkCount());
   for (int z = 0; z < dims.z; ++z)
     for (int y = 0; y < dims.y; ++y)
       for (int x = 0; x < dims.x; ++x) {
@@ -41,52 +36,59 @@ std::vector<MixedChunk> mixedChunks(const Voxmap& voxmap) {
         if (entry & Voxmap::kUniform) continue;
         for (std::uint32_t c = 0; c < kChunksPerHyper; ++c) {
           const std::uint32_t chunk = chunks[std::size_t{entry} * kChunksPerHyper + c];
-          if (chunk & Voxmap::kUniform) continue;
-          out.push_back({chunk, glm::ivec3(x, y, z) * kHyperEdgeChunks + cellOfIndex(c)});
+          if (!(chunk & Voxmap::kUniform))
+            out[chunk] = glm::ivec3(x, y, z) * kHyperEdgeChunks + cellOfIndex(c);
         }
       }
   return out;
 }
 
+/// Mixed chunks whose planes are computed together before they are packed: 16 MiB of
+/// planes at a time.
+constexpr std::size_t kChunksPerBatch = 4096;
+
 }  // namespace
 
-std::vector<SurfacePlane> computeSurfacePlanes(const Voxmap& voxmap,
-                                               std::span<const TriangleMesh* const> meshes,
-                                               const EmbreeScene& scene, int threads,
-                                               const ProgressFn& progress) {
-  const std::vector<MixedChunk> mixed = mixedChunks(voxmap);
-  std::vector<SurfacePlane> planes(mixed.size() * kVoxelsPerChunk);
+SparseSurfacePlanes computeSurfacePlanes(const Voxmap& voxmap, std::span<const TriangleMesh* const> meshes,
+                                         const EmbreeScene& scene, int threads, const ProgressFn& progress) {
+  const std::vector<glm::ivec3> chunkOf = chunkOfBlock(voxmap);
+  SparseSurfacePlanes planes;
+  std::vector<SurfacePlane> batch;
   const PseudoNormals pseudoNormals(meshes);
   const VoxelGrid& grid = voxmap.grid();
   const double s = grid.voxelSizeM;
   const std::uint8_t outermost = distanceValue(kSurfacePlaneLayers);
-  parallelFor(
-      mixed.size(), threads,
-      [&](std::size_t m) {
-        const glm::ivec3 first = mixed[m].ijkChunk * kChunkEdgeVoxels;
-        SurfacePlane* block = planes.data() + std::size_t{mixed[m].block} * kVoxelsPerChunk;
-        for (std::uint32_t i = 0; i < kVoxelsPerChunk; ++i) {
-          const glm::ivec3 ijk = first + cellOfIndex(i);
-          const std::uint8_t value = voxmap.value(ijk, Field::Surface);
-          if (value == kValueFar || value > outermost) continue;
-          const glm::dvec3 c = grid.voxelCentre(ijk);
-          // a surface or free voxel k layers out (chessboard) has surface within k + ½
-          // voxel diagonals of its centre; the query's radius bounds the triangles it visits
-          const double reachVoxels = value == kValueInterior
-                                         ? kSurfacePlaneReachVoxels
-                                         : (value - kValueFeature + 0.5) * std::sqrt(3.0) + 1e-3;
-          const auto q = scene.closestPoint(c, reachVoxels * s);
-          if (!q) continue;
-          const glm::dvec3 normal = pseudoNormals.normalAt(*q, 1e-9 * s);
-          const bool inside =
-              value == kValueInterior || (value == kValueFeature && glm::dot(c - q->point, normal) < 0.0);
-          const double onSurfaceM = 1e-6 * s;
-          const glm::dvec3 away = q->distanceM > onSurfaceM ? (c - q->point) / q->distanceM : normal;
-          const glm::dvec3 outward = q->distanceM > onSurfaceM && inside ? -away : away;
-          block[i] = SurfacePlane::make((inside ? -q->distanceM : q->distanceM) / s, outward);
-        }
-      },
-      progress);
+  for (std::size_t begin = 0; begin < chunkOf.size(); begin += kChunksPerBatch) {
+    const std::size_t count = std::min(kChunksPerBatch, chunkOf.size() - begin);
+    batch.assign(count * kVoxelsPerChunk, SurfacePlane{});
+    parallelFor(count, threads, [&](std::size_t m) {
+      const glm::ivec3 first = chunkOf[begin + m] * kChunkEdgeVoxels;
+      SurfacePlane* block = batch.data() + m * kVoxelsPerChunk;
+      for (std::uint32_t i = 0; i < kVoxelsPerChunk; ++i) {
+        const glm::ivec3 ijk = first + cellOfIndex(i);
+        const std::uint8_t value = voxmap.value(ijk, Field::Surface);
+        if (value == kValueFar || value > outermost) continue;
+        const glm::dvec3 c = grid.voxelCentre(ijk);
+        // a surface or free voxel k layers out (chessboard) has surface within k + ½
+        // voxel diagonals of its centre; the query's radius bounds the triangles it visits
+        const double reachVoxels = value == kValueInterior
+                                       ? kSurfacePlaneReachVoxels
+                                       : (value - kValueFeature + 0.5) * std::sqrt(3.0) + 1e-3;
+        const auto q = scene.closestPoint(c, reachVoxels * s);
+        if (!q) continue;
+        const glm::dvec3 normal = pseudoNormals.normalAt(*q, 1e-9 * s);
+        const bool inside =
+            value == kValueInterior || (value == kValueFeature && glm::dot(c - q->point, normal) < 0.0);
+        const double onSurfaceM = 1e-6 * s;
+        const glm::dvec3 away = q->distanceM > onSurfaceM ? (c - q->point) / q->distanceM : normal;
+        const glm::dvec3 outward = q->distanceM > onSurfaceM && inside ? -away : away;
+        block[i] = SurfacePlane::make((inside ? -q->distanceM : q->distanceM) / s, outward);
+      }
+    });
+    for (std::size_t m = 0; m < count; ++m)
+      planes.appendChunk(std::span(batch).subspan(m * kVoxelsPerChunk, kVoxelsPerChunk));
+    if (progress) progress(static_cast<double>(begin + count) / static_cast<double>(chunkOf.size()));
+  }
   return planes;
 }
 

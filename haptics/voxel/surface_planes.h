@@ -41,9 +41,8 @@ inline constexpr double kSurfacePlaneReachVoxels = 2.0;
 
 /// The planes of `voxmap` (unpaged, voxelized from `meshes`, its local frame), in the
 /// order Voxmap::setSurfacePlanes takes; `scene` is an EmbreeScene of the same meshes.
-std::vector<SurfacePlane> computeSurfacePlanes(const Voxmap& voxmap,
-                                               std::span<const TriangleMesh* const> meshes,
-                                               const EmbreeScene& scene, int threads,
-                                               const ProgressFn& progress = {});
+SparseSurfacePlanes computeSurfacePlanes(const Voxmap& voxmap, std::span<const TriangleMesh* const> meshes,
+                                         const EmbreeScene& scene, int threads,
+                                         const ProgressFn& progress = {});
 
 }  // namespace voxhap

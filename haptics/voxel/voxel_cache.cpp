@@ -127,7 +127,11 @@ void saveVoxelized(CacheFileWriter& w, const VoxelizedObject& v) {
   w.putArray(v.voxmap.chunkEntries());
   w.putArray(v.voxmap.voxelBytes());
   w.putArray(v.voxmap.chunkDistances());
-  w.putArray(v.voxmap.surfacePlanes());
+  const SparseSurfacePlanes& planes = v.voxmap.surfacePlanes();
+  w.putArray(planes.occupancy());
+  w.put(static_cast<std::uint64_t>(planes.planeCount()));
+  for (std::size_t k = 0; k < planes.segmentCount(); ++k)
+    w.write(planes.segment(k).data(), planes.segment(k).size_bytes());
 }
 
 /// What a voxmap cache file holds before its arrays.
@@ -155,11 +159,20 @@ VoxmapHeader readVoxmapHeader(CacheFileReader& r, const VoxelizeOptions& options
   return h;
 }
 
-/// Throws CacheFileError unless the file's `planeCount` surface planes are what `options`
-/// ask for (kVoxelsPerChunk per mixed chunk, or none).
-void checkPlanes(std::size_t planeCount, std::size_t mixedChunks, const VoxelizeOptions& options) {
-  if (planeCount != (options.surfacePlanes ? mixedChunks * kVoxelsPerChunk : 0))
+/// The file's surface planes; throws CacheFileError unless they are consistent and what
+/// `options` ask for (a chunk of them per mixed chunk, or none).
+SparseSurfacePlanes readPlanes(CacheFileReader& r, std::size_t mixedChunks, const VoxelizeOptions& options) {
+  SparseSurfacePlanes out;
+  const std::string problem = out.resetTo(r.getArray<std::uint64_t>());
+  if (!problem.empty()) throw CacheFileError("is corrupt (" + problem + ")");
+  if (r.get<std::uint64_t>() != out.planeCount())
+    throw CacheFileError("is corrupt (surface planes do not match their masks)");
+  for (std::size_t k = 0; k < out.segmentCount(); ++k)
+    r.read(out.segment(k).data(), out.segment(k).size_bytes());
+  if (!out.complete()) throw CacheFileError("is corrupt (a stored surface plane is empty)");
+  if (out.chunkCount() != (options.surfacePlanes ? mixedChunks : 0))
     throw CacheFileError("is corrupt (surface planes do not match the voxmap)");
+  return out;
 }
 
 VoxelizedObject loadVoxelized(CacheFileReader& r, const VoxelizeOptions& options) {
@@ -173,10 +186,9 @@ VoxelizedObject loadVoxelized(CacheFileReader& r, const VoxelizeOptions& options
   const std::string problem =
       Voxmap::validate(grid, encoding, hyper, chunks, voxelBytes.size(), chunkDistances.size());
   if (!problem.empty()) throw CacheFileError("is corrupt (" + problem + ")");
-  auto planes = r.getArray<SurfacePlane>();
   v.voxmap = Voxmap(grid, encoding, std::move(hyper), std::move(chunks), std::move(voxelBytes),
                     std::move(chunkDistances));
-  checkPlanes(planes.size(), v.voxmap.mixedChunkCount(), options);
+  SparseSurfacePlanes planes = readPlanes(r, v.voxmap.mixedChunkCount(), options);
   if (options.surfacePlanes) v.voxmap.setSurfacePlanes(std::move(planes));
   return v;
 }
@@ -250,6 +262,8 @@ std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& k
   r.skip(wordBytes);
   auto chunkDistances = r.getArray<std::uint8_t>();
   // a paged voxmap has no surface planes (its contacts take the voxels' tangent planes)
+  const auto maskCount = r.get<std::uint64_t>();
+  r.skip(maskCount * sizeof(std::uint64_t));
   const auto planeCount = r.get<std::uint64_t>();
   r.skip(planeCount * sizeof(SurfacePlane));
   r.finish();

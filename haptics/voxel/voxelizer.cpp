@@ -19,6 +19,7 @@
 #include "haptics/voxel/feature_rasterizer.h"
 #include "haptics/voxel/hyperchunk_transform.h"
 #include "haptics/voxel/interior_classifier.h"
+#include "haptics/voxel/sparse_surface_planes.h"
 #include "haptics/voxel/surface_planes.h"
 
 namespace voxhap {
@@ -334,20 +335,29 @@ VoxelizeEstimate estimateVoxelizeBytes(std::span<const TriangleMesh* const> mesh
                                        const VoxelizeOptions& options, std::uint64_t budgetBytes) {
   const double s = options.voxelSizeM;
   // per surface chunk: its feature bits; per mixed chunk: its words twice (the
-  // hyperchunks' and the assembled array), and its planes
+  // hyperchunks' and the assembled array), and its planes' index
   const double featureBytesPerChunk = kVoxelsPerChunk;
-  const double mixedBytesPerChunk = kVoxelsPerChunk * (2.0 * options.encoding.bytesPerWord() +
-                                                       (options.surfacePlanes ? sizeof(SurfacePlane) : 0));
+  const double planeIndexBytesPerChunk =
+      SparseSurfacePlanes::kMasksPerChunk * (sizeof(std::uint64_t) + sizeof(std::uint32_t));
+  const double mixedBytesPerChunk = kVoxelsPerChunk * 2.0 * options.encoding.bytesPerWord() +
+                                    (options.surfacePlanes ? planeIndexBytesPerChunk : 0.0);
   const int reachChunks = (options.encoding.rangeVoxels + kChunkEdgeVoxels - 1) / kChunkEdgeVoxels;
   const auto mostSurfaceChunks =
       static_cast<std::uint64_t>(double(budgetBytes) / (featureBytesPerChunk + mixedBytesPerChunk));
   const ChunkFootprint chunks = chunkFootprint(meshes, grid, reachChunks, mostSurfaceChunks);
-  const double crossingBytes = 3.0 * 1.2 * surfaceArea(meshes) / (s * s) * 8.0;
+  const double area = surfaceArea(meshes);
+  const double crossingBytes = 3.0 * 1.2 * area / (s * s) * 8.0;
+  // planes fill a band about six voxels thick (two layers out, two in, the surface
+  // voxels between); the landing gear has 4.3 to 4.6 per A/s² at 2.5 to 1 mm voxels
+  const double planeBytes =
+      options.surfacePlanes
+          ? std::min(6.0 * area / (s * s), double(chunks.mixedChunks) * kVoxelsPerChunk) * sizeof(SurfacePlane)
+          : 0.0;
   std::uint64_t triangles = 0;
   for (const TriangleMesh* mesh : meshes) triangles += mesh->triangles.size();
   const double meshBytes = static_cast<double>(triangles) * 200.0;
   const double bytes = double(chunks.surfaceChunks) * featureBytesPerChunk +
-                       double(chunks.mixedChunks) * mixedBytesPerChunk + crossingBytes + meshBytes;
+                       double(chunks.mixedChunks) * mixedBytesPerChunk + crossingBytes + planeBytes + meshBytes;
   return {static_cast<std::uint64_t>(bytes), !chunks.complete};
 }
 

@@ -48,8 +48,8 @@ Voxmap Voxmap::paged(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::ui
   return v;
 }
 
-void Voxmap::setSurfacePlanes(std::vector<SurfacePlane> planes) {
-  assert(!isPaged() && planes.size() == mixedChunkCount() * kVoxelsPerChunk);
+void Voxmap::setSurfacePlanes(SparseSurfacePlanes planes) {
+  assert(!isPaged() && planes.chunkCount() == mixedChunkCount());
   planes_ = std::move(planes);
 }
 

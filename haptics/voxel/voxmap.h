@@ -36,7 +36,7 @@
 #include <string>
 #include <vector>
 
-#include "haptics/voxel/surface_plane.h"
+#include "haptics/voxel/sparse_surface_planes.h"
 #include "haptics/voxel/voxel_encoding.h"
 #include "haptics/voxel/voxel_grid.h"
 
@@ -93,14 +93,13 @@ public:
     if (planes_.empty() || !grid_.containsVoxel(ijkVoxel)) return nullptr;
     const std::uint32_t chunkEntry = treeEntry_(ijkVoxel);
     if (chunkEntry & kUniform) return nullptr;
-    const SurfacePlane& plane = planes_[std::size_t{chunkEntry} * kVoxelsPerChunk + voxelInChunk(ijkVoxel)];
-    return plane.valid() ? &plane : nullptr;
+    return planes_.find(chunkEntry, voxelInChunk(ijkVoxel));
   }
-  /// Gives an unpaged voxmap its surface planes: kVoxelsPerChunk per mixed chunk, in the
+  /// Gives an unpaged voxmap its surface planes: one chunk of them per mixed chunk, in the
   /// order of the chunks' blocks of words (computeSurfacePlanes).
-  void setSurfacePlanes(std::vector<SurfacePlane> planes);
+  void setSurfacePlanes(SparseSurfacePlanes planes);
   bool hasSurfacePlanes() const noexcept { return !planes_.empty(); }
-  std::span<const SurfacePlane> surfacePlanes() const noexcept { return planes_; }
+  const SparseSurfacePlanes& surfacePlanes() const noexcept { return planes_; }
 
   /// One field of voxel `ijkVoxel`.
   std::uint8_t value(const glm::ivec3& ijkVoxel, Field field) const {
@@ -139,7 +138,7 @@ public:
   std::size_t memoryBytes() const {
     return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) +
            voxelBytes_.size() + chunkDistances_.size() + slotLastUse_.size() * sizeof(std::uint32_t) +
-           planes_.size() * sizeof(SurfacePlane);
+           planes_.memoryBytes();
   }
 
   /// Bytes after the last block, so that a 4-byte read of the last word stays inside. A
@@ -252,7 +251,7 @@ private:
   std::vector<std::uint8_t> chunkDistances_;
   std::vector<std::uint32_t> slotLastUse_;  // paged: per slot, the tick of its last use
   std::vector<std::uint32_t> useClock_;     // paged: [0] the use clock, the rest padding
-  std::vector<SurfacePlane> planes_;        // unpaged, optional: per voxel of each mixed chunk
+  SparseSurfacePlanes planes_;              // unpaged, optional
 };
 
 }  // namespace voxhap

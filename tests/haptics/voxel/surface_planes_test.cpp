@@ -85,7 +85,9 @@ TEST(SurfacePlanes, OfASphereGiveItsExactSignedDistanceNearItsSurface) {
     ++checked;
   });
   EXPECT_GT(checked, 1000);
-  EXPECT_EQ(voxmap.surfacePlanes().size(), voxmap.mixedChunkCount() * kVoxelsPerChunk);
+  // kept only where a voxel has one: a chunk of them per mixed chunk, not every voxel's
+  EXPECT_EQ(voxmap.surfacePlanes().chunkCount(), voxmap.mixedChunkCount());
+  EXPECT_LT(voxmap.surfacePlanes().planeCount(), voxmap.mixedChunkCount() * kVoxelsPerChunk / 2);
   EXPECT_GT(band, checked / 2);
 }
 
@@ -124,14 +126,8 @@ TEST(SurfacePlanes, AreTheSameBitsWhateverTheThreadCount) {
   appendGeodesicSphere(sphere, glm::translate(glm::dmat4(1.0), glm::dvec3(0.003)), 0.0025, 4);
   const Voxmap one = voxelizeWithPlanes(sphere, 1);
   const Voxmap two = voxelizeWithPlanes(sphere, 2);
-  ASSERT_EQ(one.surfacePlanes().size(), two.surfacePlanes().size());
-  for (std::size_t i = 0; i < one.surfacePlanes().size(); ++i) {
-    const SurfacePlane& a = one.surfacePlanes()[i];
-    const SurfacePlane& b = two.surfacePlanes()[i];
-    ASSERT_TRUE(a.distance == b.distance && a.outward[0] == b.outward[0] && a.outward[1] == b.outward[1] &&
-                a.outward[2] == b.outward[2])
-        << i;
-  }
+  EXPECT_TRUE(one.surfacePlanes() == two.surfacePlanes());
+  EXPECT_GT(one.surfacePlanes().planeCount(), 0u);
 }
 
 }  // namespace
