@@ -350,14 +350,15 @@ VoxelizeEstimate estimateVoxelizeBytes(std::span<const TriangleMesh* const> mesh
   // planes fill a band about six voxels thick (two layers out, two in, the surface
   // voxels between); the landing gear has 4.3 to 4.6 per A/s² at 2.5 to 1 mm voxels
   const double planeBytes =
-      options.surfacePlanes
-          ? std::min(6.0 * area / (s * s), double(chunks.mixedChunks) * kVoxelsPerChunk) * sizeof(SurfacePlane)
-          : 0.0;
+      options.surfacePlanes ? std::min(6.0 * area / (s * s), double(chunks.mixedChunks) * kVoxelsPerChunk) *
+                                  sizeof(SurfacePlane)
+                            : 0.0;
   std::uint64_t triangles = 0;
   for (const TriangleMesh* mesh : meshes) triangles += mesh->triangles.size();
   const double meshBytes = static_cast<double>(triangles) * 200.0;
   const double bytes = double(chunks.surfaceChunks) * featureBytesPerChunk +
-                       double(chunks.mixedChunks) * mixedBytesPerChunk + crossingBytes + planeBytes + meshBytes;
+                       double(chunks.mixedChunks) * mixedBytesPerChunk + crossingBytes + planeBytes +
+                       meshBytes;
   return {static_cast<std::uint64_t>(bytes), !chunks.complete};
 }
 
