@@ -12,18 +12,18 @@ constexpr std::size_t kPlanesPerSegment = std::size_t{1} << SparseSurfacePlanes:
 
 void SparseSurfacePlanes::appendChunk(std::span<const SurfacePlane> chunkPlanes) {
   assert(chunkPlanes.size() == kVoxelsPerChunk);
-  if (planeCount_ > std::numeric_limits<std::uint32_t>::max() - kVoxelsPerChunk)
+  std::size_t count = planeCount();
+  if (count > std::numeric_limits<std::uint32_t>::max() - kVoxelsPerChunk)
     throw Error("too many surface planes (over 2^32): choose a larger voxel size");
   for (std::uint32_t m = 0; m < kMasksPerChunk; ++m) {
     std::uint64_t mask = 0;
-    first_.push_back(static_cast<std::uint32_t>(planeCount_));
+    first_.push_back(static_cast<std::uint32_t>(count));
     for (std::uint32_t i = 0; i < kVoxelsPerMask; ++i) {
       const SurfacePlane& plane = chunkPlanes[m * kVoxelsPerMask + i];
       if (!plane.valid()) continue;
       mask |= std::uint64_t{1} << i;
-      if (planeCount_ % kPlanesPerSegment == 0) segments_.emplace_back().reserve(kPlanesPerSegment);
+      if (count++ % kPlanesPerSegment == 0) segments_.emplace_back().reserve(kPlanesPerSegment);
       segments_.back().push_back(plane);
-      ++planeCount_;
     }
     occupancy_.push_back(mask);
   }
@@ -43,8 +43,7 @@ std::string SparseSurfacePlanes::resetTo(std::vector<std::uint64_t> occupancy) {
     count += static_cast<std::uint64_t>(std::popcount(mask));
   }
   occupancy_ = std::move(occupancy);
-  planeCount_ = static_cast<std::size_t>(count);
-  for (std::size_t left = planeCount_; left > 0; left -= std::min(left, kPlanesPerSegment))
+  for (auto left = static_cast<std::size_t>(count); left > 0; left -= std::min(left, kPlanesPerSegment))
     segments_.emplace_back(std::min(left, kPlanesPerSegment));
   return "";
 }

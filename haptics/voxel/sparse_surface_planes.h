@@ -53,7 +53,9 @@ public:
   std::size_t chunkCount() const noexcept { return occupancy_.size() / kMasksPerChunk; }
   /// A bit per voxel of the mixed chunks: whether it has a plane.
   std::span<const std::uint64_t> occupancy() const noexcept { return occupancy_; }
-  std::size_t planeCount() const noexcept { return planeCount_; }
+  std::size_t planeCount() const noexcept {
+    return segments_.empty() ? 0 : ((segments_.size() - 1) << kSegmentLog2) + segments_.back().size();
+  }
   /// The planes of the voxels whose bit is set, in their order, a segment at a time.
   std::size_t segmentCount() const noexcept { return segments_.size(); }
   std::span<const SurfacePlane> segment(std::size_t k) const noexcept { return segments_[k]; }
@@ -66,9 +68,8 @@ public:
 
 private:
   std::vector<std::uint64_t> occupancy_;
-  std::vector<std::uint32_t> first_;  // per mask: the index of its first plane
-  std::vector<std::vector<SurfacePlane>> segments_;
-  std::size_t planeCount_ = 0;
+  std::vector<std::uint32_t> first_;                 // per mask: the index of its first plane
+  std::vector<std::vector<SurfacePlane>> segments_;  // all full but the last
 };
 
 }  // namespace voxhap
