@@ -2,6 +2,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "haptics/collide/point_sampler_avx2.h"
+
 namespace voxhap {
 
 VoxelTransform VoxelTransform::make(const Pose& shellToVoxmap, const VoxelGrid& grid) {
@@ -24,9 +26,20 @@ std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, cons
   return shifts;
 }
 
-std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                           const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t maxValue,
-                           std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept {
+PointTestPath pointTestPathFor(const Voxmap& voxmap) noexcept {
+  // the gathers index hyperchunk and chunk entries with 31 bits
+  constexpr std::size_t kIndexLimit = std::size_t{1} << 31;
+  const bool reachable =
+      voxmap.hyperEntries().size() < kIndexLimit && voxmap.chunkEntries().size() < kIndexLimit;
+  return cpuHasAvx2() && !voxmap.isPaged() && reachable ? PointTestPath::Avx2 : PointTestPath::Scalar;
+}
+
+std::uint32_t samplePointsOn(PointTestPath path, const Pointshell& shell, const Voxmap& voxmap,
+                             const VoxelTransform& transform, const std::array<std::uint8_t, 3>& fieldShifts,
+                             std::uint8_t maxValue, std::uint32_t first, std::uint32_t last,
+                             PointContact* contacts) noexcept {
+  if (path == PointTestPath::Avx2)
+    return samplePointsAvx2(shell, voxmap, transform, fieldShifts, maxValue, first, last, contacts);
   const VoxelWord fieldMask = voxmap.encoding().fieldMask();
   std::uint32_t found = 0;
   for (std::uint32_t i = first; i < last; ++i) {

@@ -77,13 +77,31 @@ inline PointSample samplePointAt(const Pointshell& shell, const Voxmap& voxmap,
 /// The field each feature label samples: geometrical awareness or the surface field.
 std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, const VoxelEncoding& encoding);
 
+/// How samplePoints runs: one point at a time, or eight with AVX2 (point_sampler_avx2.h).
+/// Both write the same contacts, bit for bit.
+enum class PointTestPath : std::uint8_t { Scalar, Avx2 };
+
+/// The path samplePoints takes for `voxmap` on this CPU: AVX2 where the CPU has it and
+/// the voxmap is not paged.
+PointTestPath pointTestPathFor(const Voxmap& voxmap) noexcept;
+
+/// samplePoints by `path` (Avx2 only where pointTestPathFor gives it).
+std::uint32_t samplePointsOn(PointTestPath path, const Pointshell& shell, const Voxmap& voxmap,
+                             const VoxelTransform& transform, const std::array<std::uint8_t, 3>& fieldShifts,
+                             std::uint8_t maxValue, std::uint32_t first, std::uint32_t last,
+                             PointContact* contacts) noexcept;
+
 /// Tests points [first, last) of `shell` against `voxmap`; writes every point whose
 /// value lies in [1, maxValue] (the force layer, or one beyond for pre-contact damping)
-/// to `contacts` (room for last − first entries) and returns how many it wrote.
-/// `fieldShifts` comes from fieldShiftsByFeature.
-std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
-                           const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t maxValue,
-                           std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept;
+/// to `contacts` (room for last − first entries), in point order, and returns how many it
+/// wrote. `fieldShifts` comes from fieldShiftsByFeature.
+inline std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap,
+                                  const VoxelTransform& transform,
+                                  const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t maxValue,
+                                  std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept {
+  return samplePointsOn(pointTestPathFor(voxmap), shell, voxmap, transform, fieldShifts, maxValue, first,
+                        last, contacts);
+}
 
 /// The field value point `index` reads (0 … 2^bits − 1); for tests and proximity.
 inline std::uint8_t samplePoint(const Pointshell& shell, const Voxmap& voxmap,
