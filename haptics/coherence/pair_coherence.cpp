@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "haptics/coherence/max_travel.h"
+#include "haptics/collide/point_sampler_avx2.h"
 
 namespace voxhap {
 namespace {
@@ -208,17 +209,21 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
   const VoxelWord fieldMask = voxmap.encoding().fieldMask();
   std::uint32_t at = 0;
   const int queueCount = queueCountFor(forceLayer_, maxValue_);
+  const bool avx2 = pointTestPathFor(voxmap) == PointTestPath::Avx2;
   for (int q = 0; q < queueCount; ++q) {
     const auto end = std::min<std::size_t>(dueEndByQueue_[static_cast<std::size_t>(q)], due.size());
     const bool mayDrift = drifting_ && q >= kMandatoryQueues;
     while (at < end) {
-      // Each batch reads its voxel words first, all independent loads, so that their cache
-      // misses overlap; then classifies the points in order, as one at a time would.
+      // Each batch reads its voxel words first, all independent loads (eight at a time
+      // with AVX2), so that their cache misses overlap; then classifies the points in
+      // order, as one at a time would. Points that drifted no nearer than two voxels from
+      // their last lookup read nothing.
       const auto batch = static_cast<std::uint32_t>(std::min<std::size_t>(kTestBatch, end - at));
       std::array<glm::vec3, kTestBatch> voxels;
-      std::array<glm::ivec3, kTestBatch> ijks;
-      std::array<VoxelWord, kTestBatch> words;
       std::array<float, kTestBatch> guaranteedVoxels;  // by the last lookup, drifting; else 0
+      std::array<glm::ivec3, kTestBatch> ijks;         // of the points that read, in order
+      std::array<VoxelWord, kTestBatch> words;
+      std::uint32_t reads = 0;
       for (std::uint32_t k = 0; k < batch; ++k) {
         const std::uint32_t point = due[at + k];
         voxels[k] = transform.apply(shell.positionsLocal[point]);
@@ -226,10 +231,12 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
                                   ? static_cast<float>(voxelsToContact(lookupQueue_[point])) -
                                         glm::length(voxels[k] - lookupVoxel_[point])
                                   : 0.0f;
-        if (guaranteedVoxels[k] >= 2.0f) continue;
-        ijks[k] = voxelOf(voxels[k]);
-        words[k] = voxmap.word(ijks[k]);
+        if (guaranteedVoxels[k] < 2.0f) ijks[reads++] = voxelOf(voxels[k]);
       }
+      const std::uint32_t vectorReads = avx2 ? reads & ~7u : 0;
+      if (vectorReads > 0) voxelWordsAvx2(voxmap, ijks.data(), vectorReads, words.data());
+      for (std::uint32_t r = vectorReads; r < reads; ++r) words[r] = voxmap.word(ijks[r]);
+      std::uint32_t read = 0;
       for (std::uint32_t k = 0; k < batch; ++k, ++at) {
         const std::uint32_t point = due[at];
         const glm::vec3& voxel = voxels[k];
@@ -238,7 +245,9 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
           ++tested.drifted;
           continue;
         }
-        if (words[k] == Voxmap::kMissingWord) {  // tested again once its chunk is (asked to be) resident
+        const glm::ivec3 ijk = ijks[read];
+        const VoxelWord word = words[read++];
+        if (word == Voxmap::kMissingWord) {  // tested again once its chunk is (asked to be) resident
           ++tested.missing;
           queues.move(point, q, 1);
           if (drifting_) lookupQueue_[point] = 0;
@@ -248,12 +257,12 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
           continue;
         }
         const std::uint8_t value =
-            fieldValue(words[k], fieldShifts[static_cast<std::size_t>(shell.features[point])], fieldMask);
+            fieldValue(word, fieldShifts[static_cast<std::size_t>(shell.features[point])], fieldMask);
         // value − 1 wraps far (0) to 255, so one compare keeps [1, sampledLayer]
         if (static_cast<std::uint8_t>(value - 1u) < sampledLayer) {
           PointContact& contact = contacts[tested.contacts++];  // field by field, as samplePoints
           contact.point = point;
-          contact.ijkVoxel = ijks[k];
+          contact.ijkVoxel = ijk;
           contact.value = value;
         }
         const int found = queueForValue(value, forceLayer_, maxValue_);

@@ -179,4 +179,17 @@ bool cpuHasAvx2() noexcept {
                                 last, contacts + found);
 }
 
+[[gnu::target("avx2")]] void voxelWordsAvx2(const Voxmap& voxmap, const glm::ivec3* ijkVoxels,
+                                            std::size_t count, VoxelWord* words) noexcept {
+  static_assert(sizeof(glm::ivec3) == 3 * sizeof(float));
+  const Lookup8 lookup = lookup8Of(voxmap);
+  for (std::size_t i = 0; i + 8 <= count; i += 8) {
+    __m256 ijk[3];
+    transposeEightPoints(reinterpret_cast<const float*>(ijkVoxels + i), ijk);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(words + i),
+                        words8(lookup, _mm256_castps_si256(ijk[0]), _mm256_castps_si256(ijk[1]),
+                               _mm256_castps_si256(ijk[2])));
+  }
+}
+
 }  // namespace voxhap

@@ -21,4 +21,9 @@ std::uint32_t samplePointsAvx2(const Pointshell& shell, const Voxmap& voxmap, co
                                const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t maxValue,
                                std::uint32_t first, std::uint32_t last, PointContact* contacts) noexcept;
 
+/// Voxmap::word of the first `count` voxels of `ijkVoxels`, rounded down to a multiple of
+/// eight, into `words`; call only where pointTestPathFor gives PointTestPath::Avx2.
+void voxelWordsAvx2(const Voxmap& voxmap, const glm::ivec3* ijkVoxels, std::size_t count,
+                    VoxelWord* words) noexcept;
+
 }  // namespace voxhap

@@ -166,6 +166,31 @@ TEST_F(PointSamplerAvx2, RoundsAsTheScalarLoopForPointsWithinAFewFloatStepsOfAVo
             points / 10);
 }
 
+TEST_F(PointSamplerAvx2, ReadsTheWordsOfVoxelsAsVoxmapWordInsideAndOutsideTheGrid) {
+  for (const int bits : {2, 4, 8}) {
+    const Voxmap voxmap = socketVoxmap(bits);
+    const glm::ivec3 dims = voxmap.grid().dimsVoxels();
+    std::mt19937 random(5);
+    std::vector<glm::ivec3> voxels;
+    for (int n = 0; n < 4000; ++n) {
+      // a tenth up to a grid's size outside it, on any side
+      const int reach = n % 10 == 0 ? 3 : 1;
+      auto along = [&](int d) {
+        return std::uniform_int_distribution<int>(-(reach - 1) * d, reach * d - 1)(random);
+      };
+      voxels.push_back({along(dims.x), along(dims.y), along(dims.z)});
+    }
+    std::vector<VoxelWord> words(voxels.size());
+    voxelWordsAvx2(voxmap, voxels.data(), voxels.size(), words.data());
+    std::size_t stored = 0;
+    for (std::size_t n = 0; n < voxels.size(); ++n) {
+      ASSERT_EQ(words[n], voxmap.word(voxels[n])) << bits << " bits, voxel " << n;
+      stored += words[n] != 0 ? 1 : 0;
+    }
+    EXPECT_GT(stored, voxels.size() / 20) << bits << " bits";
+  }
+}
+
 TEST(PointSampler, TakesTheScalarPathOnAPagedVoxmap) {
   const Voxmap voxmap = socketVoxmap(4);
   const Voxmap paged = Voxmap::paged(voxmap.grid(), voxmap.encoding(),
