@@ -27,10 +27,12 @@ std::array<std::uint8_t, 3> fieldShiftsByFeature(bool geometricalAwareness, cons
 }
 
 PointTestPath pointTestPathFor(const Voxmap& voxmap) noexcept {
-  // the gathers index hyperchunk and chunk entries with 31 bits
+  // the gathers index hyperchunk and chunk entries with 31 bits, words with 32
   constexpr std::size_t kIndexLimit = std::size_t{1} << 31;
-  const bool reachable =
-      voxmap.hyperEntries().size() < kIndexLimit && voxmap.chunkEntries().size() < kIndexLimit;
+  const std::size_t words =
+      voxmap.voxelBytes().size() / static_cast<std::size_t>(voxmap.encoding().bytesPerWord());
+  const bool reachable = voxmap.hyperEntries().size() < kIndexLimit &&
+                         voxmap.chunkEntries().size() < kIndexLimit && words < 2 * kIndexLimit;
   return cpuHasAvx2() && !voxmap.isPaged() && reachable ? PointTestPath::Avx2 : PointTestPath::Scalar;
 }
 

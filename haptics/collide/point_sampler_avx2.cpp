@@ -18,8 +18,7 @@ struct Lookup8 {
   __m256i lastVoxel[3];  ///< dimsVoxels − 1 along x, y, z
   __m256i dimsHyperX;
   __m256i dimsHyperY;
-  __m256i blockBytes;    ///< 64-bit lanes
-  __m256i bytesPerWord;  ///< 64-bit lanes
+  __m128i byteShift;  ///< log2 bytesPerWord: a word's index to its byte offset
   __m256i wordMask;
 };
 
@@ -31,8 +30,7 @@ struct Lookup8 {
           {_mm256_set1_epi32(last.x), _mm256_set1_epi32(last.y), _mm256_set1_epi32(last.z)},
           _mm256_set1_epi32(grid.dimsHyper.x),
           _mm256_set1_epi32(grid.dimsHyper.y),
-          _mm256_set1_epi64x(static_cast<long long>(arrays.blockBytes)),
-          _mm256_set1_epi64x(static_cast<long long>(arrays.bytesPerWord)),
+          _mm_cvtsi32_si128(std::countr_zero(arrays.bytesPerWord)),
           _mm256_set1_epi32(static_cast<int>(arrays.wordMask))};
 }
 
@@ -48,13 +46,12 @@ struct Lookup8 {
                                                              _mm256_slli_epi32(cellBits(z, shift), 6)));
 }
 
-/// Four voxels' words from their chunk entries and indices in the chunk: gathered where
-/// `mixed` (sign bits) says the chunk is stored voxel by voxel, else `uniformWord`.
-[[gnu::target("avx2")]] inline __m128i wordsOf4(const Lookup8& l, __m128i entry, __m128i voxelInChunk,
-                                                __m128i mixed, __m128i uniformWord) {
-  const __m256i byteAt =
-      _mm256_add_epi64(_mm256_mul_epu32(_mm256_cvtepu32_epi64(entry), l.blockBytes),
-                       _mm256_mul_epu32(_mm256_cvtepu32_epi64(voxelInChunk), l.bytesPerWord));
+/// Four words by their indices in the voxmap's words (block · 512 + voxel in chunk), by
+/// 64-bit byte offsets (a voxmap's words may pass 2 GiB): gathered where `mixed` (sign
+/// bits), else `uniformWord`. One gather of eight by 32-bit offsets measured no faster.
+[[gnu::target("avx2")]] inline __m128i wordsOf4(const Lookup8& l, __m128i wordIndex, __m128i mixed,
+                                                __m128i uniformWord) {
+  const __m256i byteAt = _mm256_sll_epi64(_mm256_cvtepu32_epi64(wordIndex), l.byteShift);
   return _mm256_mask_i64gather_epi32(uniformWord, reinterpret_cast<const int*>(l.arrays.words), byteAt, mixed,
                                      1);
 }
@@ -87,11 +84,12 @@ struct Lookup8 {
                                                     chunkIndex, mixedHyper, 4);
   const __m256i mixed = _mm256_srai_epi32(_mm256_andnot_si256(entry, inside), 31);
   const __m256i uniformWord = _mm256_and_si256(entry, _mm256_set1_epi32(~static_cast<int>(Voxmap::kUniform)));
-  const __m256i inChunk = cellIndex(x, y, z, 0);
-  const __m128i low = wordsOf4(l, _mm256_castsi256_si128(entry), _mm256_castsi256_si128(inChunk),
-                               _mm256_castsi256_si128(mixed), _mm256_castsi256_si128(uniformWord));
-  const __m128i high = wordsOf4(l, _mm256_extracti128_si256(entry, 1), _mm256_extracti128_si256(inChunk, 1),
-                                _mm256_extracti128_si256(mixed, 1), _mm256_extracti128_si256(uniformWord, 1));
+  // an unpaged voxmap's blocks follow each other: a word's index is block · 512 + voxel in chunk
+  const __m256i wordIndex = _mm256_or_si256(_mm256_slli_epi32(entry, 9), cellIndex(x, y, z, 0));
+  const __m128i low = wordsOf4(l, _mm256_castsi256_si128(wordIndex), _mm256_castsi256_si128(mixed),
+                               _mm256_castsi256_si128(uniformWord));
+  const __m128i high = wordsOf4(l, _mm256_extracti128_si256(wordIndex, 1), _mm256_extracti128_si256(mixed, 1),
+                                _mm256_extracti128_si256(uniformWord, 1));
   const __m256i words = _mm256_set_m128i(high, low);
   return _mm256_blendv_epi8(words, _mm256_and_si256(words, l.wordMask), mixed);
 }

@@ -196,17 +196,17 @@ public:
     }
   };
   /// The arrays an unpaged voxmap's lookup reads, for a vectorized lookup that does the
-  /// same as word() eight voxels at a time (point_sampler_avx2.cpp).
+  /// same as word() eight voxels at a time (point_sampler_avx2.cpp). Its blocks of words
+  /// follow each other: block b's words start at b · 512 words.
   struct LookupArrays {
     const std::uint32_t* hyper = nullptr;
     const std::uint32_t* chunks = nullptr;
     const std::uint8_t* words = nullptr;  ///< voxelBytes, padded for a 4-byte read of the last word
-    std::size_t blockBytes = 0;           ///< bytes from one block of words to the next
     std::size_t bytesPerWord = 0;
     VoxelWord wordMask = 0;
   };
   LookupArrays lookupArrays() const {
-    return {hyper_.data(), chunks_.data(), voxelBytes_.data(), blockStrideBytes_, bytesPerWord_, wordMask_};
+    return {hyper_.data(), chunks_.data(), voxelBytes_.data(), bytesPerWord_, wordMask_};
   }
 
   /// Whether its words are a pool of slots that a pager fills (Voxmap::paged).
