@@ -15,27 +15,25 @@ namespace {
 /// paged out (paged voxmap) counts as the centre and is noted in `out`.
 glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift, PairWrench& out) {
   const VoxelEncoding& e = voxmap.encoding();
-  auto valueAt = [&](const glm::ivec3& v) {
-    const VoxelWord word = voxmap.word(v);
-    if (word == Voxmap::kMissingWord) {
-      if (out.missingVoxels++ == 0) out.firstMissingVoxel = v;
-      return -1;
+  const std::array<VoxelWord, 7> words = voxmap.wordsAround(ijk);
+  std::array<int, 7> values;  // −1: paged out
+  for (std::size_t n = 0; n < values.size(); ++n) {
+    if (words[n] == Voxmap::kMissingWord) {
+      if (out.missingVoxels++ == 0) out.firstMissingVoxel = ijk + Voxmap::kAroundSteps[n];
+      values[n] = -1;
+      continue;
     }
-    const auto value = static_cast<int>((word >> shift) & e.fieldMask());
-    return value == kValueFar ? e.maxValue() + 1 : value;
-  };
-  const int centre = valueAt(ijk);
+    const auto value = static_cast<int>((words[n] >> shift) & e.fieldMask());
+    values[n] = value == kValueFar ? e.maxValue() + 1 : value;
+  }
+  const int centre = values[0];
   // whole vectors, not one component at a time: a vector written by component and read
   // whole stalled on store forwarding (perf, contactWrenches)
-  auto fallAlong = [&](const glm::ivec3& step) {
-    const int below = valueAt(ijk - step);
-    const int above = valueAt(ijk + step);
-    return double((below < 0 ? centre : below) - (above < 0 ? centre : above));
+  auto fallAlong = [&](std::size_t below, std::size_t above) {
+    return double((values[below] < 0 ? centre : values[below]) -
+                  (values[above] < 0 ? centre : values[above]));
   };
-  const double x = fallAlong({1, 0, 0});  // in this order: the first missing neighbour is noted
-  const double y = fallAlong({0, 1, 0});
-  const double z = fallAlong({0, 0, 1});
-  const glm::dvec3 g(x, y, z);
+  const glm::dvec3 g(fallAlong(1, 2), fallAlong(3, 4), fallAlong(5, 6));
   const double length = glm::length(g);
   return length > 0.0 ? g / length : g;
 }

@@ -29,12 +29,15 @@
 /// one predictable branch.
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <span>
 #include <string>
 #include <vector>
+
+#include <glm/vector_relational.hpp>
 
 #include "haptics/voxel/sparse_surface_planes.h"
 #include "haptics/voxel/voxel_encoding.h"
@@ -85,6 +88,36 @@ public:
     VoxelWord w;
     std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // padded for this read: each slot, or the end
     return w & wordMask_;
+  }
+
+  /// The words of voxel `ijkVoxel` and of its six face neighbours, in the order of
+  /// kAroundSteps, as seven calls of word() give them: one tree walk where all seven lie in
+  /// one chunk.
+  static constexpr glm::ivec3 kAroundSteps[7] = {{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0},
+                                                 {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+  std::array<VoxelWord, 7> wordsAround(const glm::ivec3& ijkVoxel) const {
+    const glm::ivec3 inChunk = ijkVoxel & (kChunkEdgeVoxels - 1);
+    const bool oneChunk = grid_.containsVoxel(ijkVoxel) &&
+                          glm::all(glm::greaterThan(inChunk, glm::ivec3(0))) &&
+                          glm::all(glm::lessThan(inChunk, glm::ivec3(kChunkEdgeVoxels - 1)));
+    std::array<VoxelWord, 7> words;
+    if (!oneChunk) {
+      for (std::size_t n = 0; n < words.size(); ++n) words[n] = word(ijkVoxel + kAroundSteps[n]);
+      return words;
+    }
+    const std::uint32_t chunkEntry = treeEntry_(ijkVoxel);
+    if (chunkEntry & kUniform) {
+      words.fill(chunkEntry & ~kUniform);
+      return words;
+    }
+    if (!slotLastUse_.empty()) markUse_(chunkEntry);
+    const std::uint8_t* block = voxelBytes_.data() + std::size_t{chunkEntry} * blockStrideBytes_;
+    for (std::size_t n = 0; n < words.size(); ++n) {
+      VoxelWord w;
+      std::memcpy(&w, block + voxelInChunk(ijkVoxel + kAroundSteps[n]) * bytesPerWord_, sizeof w);
+      words[n] = w & wordMask_;
+    }
+    return words;
   }
 
   /// The surface plane of voxel `ijkVoxel` (surface_planes.h), or null: the voxmap has

@@ -1,6 +1,7 @@
 // Contact-wrench throughput (issue 13): the tangent-plane forces of the ball's contacts in
 // its socket, as the rotation benchmark's frames sum them: the scene model as `voxhap bench
-// rotation` builds it (surface planes, points half a voxel inward), the contacts of one
+// rotation` builds it (the paper's contact: each push along the voxmap field's fall
+// direction; points half a voxel inward), the contacts of one
 // pass of point tests at a pose turned about the ball's centre, summed by
 // tangentPlaneWrench. Each iteration takes the next of a few poses, sampled beforehand, so
 // that the voxmap reads are not all cache-warm. Counters: contacts per second, how many

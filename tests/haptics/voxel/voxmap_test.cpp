@@ -108,6 +108,31 @@ TEST(Voxmap, PointsByFeatureFollowTheCubesCornersAndEdges) {
   EXPECT_EQ(stats.vertexPoints + stats.edgePoints + stats.surfacePoints, stats.surfaceVoxels);
 }
 
+TEST(Voxmap, WordsAroundAVoxelAreItsAndItsSixNeighboursWordsInsideChunksAcrossThemAndOutsideTheGrid) {
+  const TwoCubes cubes;
+  const Voxmap& voxmap = cubes.voxelized.voxmap;
+  const glm::ivec3 dims = voxmap.grid().dimsVoxels();
+  // every voxel of a box around the first cube's corner, past the grid's low faces, and of
+  // the grid's far corner: voxels inside chunks, on chunk faces, in uniform chunks, outside
+  std::size_t differentNeighbours = 0;
+  auto check = [&](const glm::ivec3& lo, const glm::ivec3& hi) {
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+          const glm::ivec3 v(x, y, z);
+          const std::array<VoxelWord, 7> around = voxmap.wordsAround(v);
+          for (std::size_t n = 0; n < around.size(); ++n) {
+            ASSERT_EQ(around[n], voxmap.word(v + Voxmap::kAroundSteps[n]))
+                << x << " " << y << " " << z << " " << n;
+          }
+          differentNeighbours += around[1] != around[2] ? 1 : 0;
+        }
+  };
+  check(glm::ivec3(-2), glm::ivec3(20));
+  check(dims - 3, dims + 1);
+  EXPECT_GT(differentNeighbours, 500u);  // the cube's faces and the field around them
+}
+
 TEST(Voxmap, ValidateRejectsIndicesBeyondTheArrays) {
   const TwoCubes cubes;
   const Voxmap& v = cubes.voxelized.voxmap;
