@@ -3,8 +3,8 @@
 /// the same order as the scalar loop (a multiply and an add, never fused: the target has
 /// no FMA), the same floor and the same tree walk by masked gathers, so the contacts are
 /// the same bits on every CPU. Only for an unpaged voxmap (a paged one marks the slots it
-/// reads, and may read a chunk missing) whose chunk entries and words an index of 31 and
-/// 64 bits reach; pointTestPathFor says when.
+/// reads, and may read a chunk missing) whose hyperchunk and chunk entries a 31-bit index
+/// reaches and whose words a 32-bit one; pointTestPathFor says when.
 
 #include <array>
 #include <cstdint>
