@@ -158,19 +158,22 @@ bool cpuHasAvx2() noexcept {
         _mm256_srlv_epi32(word, _mm256_permutevar8x32_epi32(shiftOfFeature, feature)), fieldMask);
     const __m256i hit = _mm256_and_si256(_mm256_cmpgt_epi32(value, _mm256_setzero_si256()),
                                          _mm256_cmpgt_epi32(pastLayer, value));
-    auto lanes = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(hit)));
+    const auto lanes = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(hit)));
     if (lanes == 0) continue;
     alignas(32) std::int32_t ijk[3][8];
     alignas(32) std::int32_t values[8];
     for (int axis = 0; axis < 3; ++axis)
       _mm256_store_si256(reinterpret_cast<__m256i*>(ijk[axis]), voxel[axis]);
     _mm256_store_si256(reinterpret_cast<__m256i*>(values), value);
-    for (; lanes != 0; lanes &= lanes - 1) {
-      const auto lane = static_cast<std::size_t>(std::countr_zero(lanes));
-      PointContact& contact = contacts[found++];
-      contact.point = i + static_cast<std::uint32_t>(lane);
+    // every lane written, the count advanced by the hits only: no branch per lane to
+    // mispredict (which would stall the next group's gathers). The slot written for a lane
+    // is at most its point's index in [first, last), inside the caller's room.
+    for (unsigned lane = 0; lane < 8; ++lane) {
+      PointContact& contact = contacts[found];
+      contact.point = i + lane;
       contact.ijkVoxel = {ijk[0][lane], ijk[1][lane], ijk[2][lane]};
       contact.value = static_cast<std::uint8_t>(values[lane]);
+      found += (lanes >> lane) & 1u;
     }
   }
   return found + samplePointsOn(PointTestPath::Scalar, shell, voxmap, transform, fieldShifts, maxValue, i,
