@@ -93,8 +93,8 @@ std::uint32_t samplePointsOn(PointTestPath path, const Pointshell& shell, const 
 
 /// Tests points [first, last) of `shell` against `voxmap`; writes every point whose
 /// value lies in [1, maxValue] (the force layer, or one beyond for pre-contact damping)
-/// to `contacts` (room for last − first entries), in point order, and returns how many it
-/// wrote. `fieldShifts` comes from fieldShiftsByFeature.
+/// to `contacts` (room for last − first entries; those past the count may be written too),
+/// in point order, and returns how many it wrote. `fieldShifts` comes from fieldShiftsByFeature.
 inline std::uint32_t samplePoints(const Pointshell& shell, const Voxmap& voxmap,
                                   const VoxelTransform& transform,
                                   const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t maxValue,
