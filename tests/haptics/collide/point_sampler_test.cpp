@@ -193,10 +193,14 @@ TEST_F(PointSamplerAvx2, ReadsTheWordsOfVoxelsAsVoxmapWordInsideAndOutsideTheGri
 
 TEST(PointSampler, TakesTheScalarPathOnAPagedVoxmap) {
   const Voxmap voxmap = socketVoxmap(4);
-  const Voxmap paged = Voxmap::paged(voxmap.grid(), voxmap.encoding(),
-                                     {voxmap.hyperEntries().begin(), voxmap.hyperEntries().end()},
-                                     {voxmap.chunkEntries().begin(), voxmap.chunkEntries().end()}, 4,
-                                     {voxmap.chunkDistances().begin(), voxmap.chunkDistances().end()});
+  // as a cache file pages it: every mixed chunk missing until a pager brings it in
+  std::vector<std::uint32_t> chunks(voxmap.chunkEntries().begin(), voxmap.chunkEntries().end());
+  for (std::uint32_t& entry : chunks)
+    if (!(entry & Voxmap::kUniform)) entry = Voxmap::kUniform | Voxmap::kMissingWord;
+  const Voxmap paged = Voxmap::paged(
+      voxmap.grid(), voxmap.encoding(), {voxmap.hyperEntries().begin(), voxmap.hyperEntries().end()},
+      std::move(chunks), 4, {voxmap.chunkDistances().begin(), voxmap.chunkDistances().end()});
+  ASSERT_TRUE(paged.isPaged());
   EXPECT_EQ(pointTestPathFor(paged), PointTestPath::Scalar);
   EXPECT_EQ(pointTestPathFor(voxmap), cpuHasAvx2() ? PointTestPath::Avx2 : PointTestPath::Scalar);
 }
