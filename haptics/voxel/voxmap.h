@@ -83,11 +83,7 @@ public:
     const std::uint32_t chunkEntry = treeEntry_(ijkVoxel);
     if (chunkEntry & kUniform) return chunkEntry & ~kUniform;
     if (!slotLastUse_.empty()) markUse_(chunkEntry);
-    const std::size_t at =
-        std::size_t{chunkEntry} * blockStrideBytes_ + voxelInChunk(ijkVoxel) * bytesPerWord_;
-    VoxelWord w;
-    std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // padded for this read: each slot, or the end
-    return w & wordMask_;
+    return wordInBlock_(chunkEntry, ijkVoxel);
   }
 
   /// The words of voxel `ijkVoxel` and of its six face neighbours, in the order of
@@ -111,12 +107,8 @@ public:
       return words;
     }
     if (!slotLastUse_.empty()) markUse_(chunkEntry);
-    const std::uint8_t* block = voxelBytes_.data() + std::size_t{chunkEntry} * blockStrideBytes_;
-    for (std::size_t n = 0; n < words.size(); ++n) {
-      VoxelWord w;
-      std::memcpy(&w, block + voxelInChunk(ijkVoxel + kAroundSteps[n]) * bytesPerWord_, sizeof w);
-      words[n] = w & wordMask_;
-    }
+    for (std::size_t n = 0; n < words.size(); ++n)
+      words[n] = wordInBlock_(chunkEntry, ijkVoxel + kAroundSteps[n]);
     return words;
   }
 
@@ -259,6 +251,14 @@ public:
   }
 
 private:
+  /// The word of voxel `ijkVoxel` in the block of mixed chunk `chunkEntry`.
+  VoxelWord wordInBlock_(std::uint32_t chunkEntry, const glm::ivec3& ijkVoxel) const {
+    const std::size_t at =
+        std::size_t{chunkEntry} * blockStrideBytes_ + voxelInChunk(ijkVoxel) * bytesPerWord_;
+    VoxelWord w;
+    std::memcpy(&w, voxelBytes_.data() + at, sizeof w);  // padded for this read: each slot, or the end
+    return w & wordMask_;
+  }
   /// Words of useClock_: the clock, then padding to a cache line of its own.
   static constexpr std::size_t kClockWords = 64 / sizeof(std::uint32_t);
 
