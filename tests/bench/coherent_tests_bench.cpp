@@ -3,37 +3,19 @@
 // through its centre in its socket by the pair's MaxTravel a frame (its farthest point
 // moves that far), and each iteration is one frame of its coherence: the chunk tests,
 // the due points collected from the queues, and their tests (drift, voxmap lookup, queue
-// moves). The ball seats as `voxhap bench rotation` seats it: its points a voxel inward,
-// the surface voxels its pair's force layer. Counters: point tests per second; tests, contacts and
-// tests that drifted (no lookup) per frame.
-#include <map>
-#include <memory>
-
+// moves), the ball seated as that benchmark seats it (seated_ball_model.h). Counters: point tests per second;
+// tests, contacts and tests that drifted (no lookup) per frame.
 #include <benchmark/benchmark.h>
 #include <glm/gtc/quaternion.hpp>
 
 #include "haptics/coherence/pair_coherence.h"
-#include "haptics/scene/builtin/builtin_scenes.h"
-#include "haptics/sim/scene_model.h"
+#include "tests/bench/seated_ball_model.h"
 
 namespace voxhap {
 namespace {
 
-const SimModel& ballModel(double voxelM) {
-  static std::map<double, std::unique_ptr<SimModel>> cache;
-  auto& entry = cache[voxelM];
-  if (entry) return *entry;
-  SceneModelOptions options;
-  options.staticVoxelSizeM = voxelM;
-  options.pointSpacingM = voxelM;
-  options.pointDisplacementM = -voxelM;
-  options.forceLayerOf = {{"ball", kValueFeature}};
-  entry = std::make_unique<SimModel>(buildSceneModel(makeBallAndSocket(), {"ball"}, options));
-  return *entry;
-}
-
 void coherentTests(benchmark::State& state) {
-  const SimModel& model = ballModel(static_cast<double>(state.range(0)) * 1e-5);
+  const SimModel& model = seatedBallModel(static_cast<double>(state.range(0)) * 1e-5);
   const PairModel& pair = model.pairs[0];
   const MovingObjectModel& ball = model.objects[0];
   const Pointshell& shell = ball.shell;

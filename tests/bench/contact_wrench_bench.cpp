@@ -1,11 +1,10 @@
 // Contact-wrench throughput (issue 13): the tangent-plane forces of the ball's contacts in
-// its socket, as the rotation benchmark's frames sum them: the scene model as `voxhap bench
-// rotation` builds it (the paper's contact: each push along the voxmap field's fall
-// direction; points half a voxel inward), the contacts of one
-// pass of point tests at a pose turned about the ball's centre, summed by
-// tangentPlaneWrench. Each iteration takes the next of a few poses, sampled beforehand, so
-// that the voxmap reads are not all cache-warm. Counters: contacts per second, how many
-// of them push.
+// its socket, as the rotation benchmark's frames sum them: the ball seated as `voxhap bench
+// rotation` seats it (seated_ball_model.h; the paper's contact: each push along the voxmap
+// field's fall direction), the contacts of one pass of point tests at a pose turned about
+// the ball's centre, summed by tangentPlaneWrench. Each iteration takes the next of a few
+// poses, sampled beforehand, so that the voxmap reads are not all cache-warm. Counters:
+// contacts per second, how many of them push.
 #include <map>
 #include <memory>
 
@@ -13,8 +12,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "haptics/collide/tangent_plane_force.h"
-#include "haptics/scene/builtin/builtin_scenes.h"
-#include "haptics/sim/scene_model.h"
+#include "tests/bench/seated_ball_model.h"
 
 namespace voxhap {
 namespace {
@@ -25,7 +23,7 @@ struct SampledPose {
 };
 
 struct SeatedBall {
-  SimModel model;
+  const SimModel& model;
   std::vector<SampledPose> poses;
 };
 
@@ -33,12 +31,7 @@ const SeatedBall& seatedBall(double voxelM) {
   static std::map<double, std::unique_ptr<SeatedBall>> cache;
   auto& entry = cache[voxelM];
   if (entry) return *entry;
-  SceneModelOptions options;
-  options.staticVoxelSizeM = voxelM;
-  options.pointSpacingM = voxelM;
-  options.pointDisplacementM = -0.5 * voxelM;
-  entry =
-      std::make_unique<SeatedBall>(SeatedBall{buildSceneModel(makeBallAndSocket(), {"ball"}, options), {}});
+  entry = std::make_unique<SeatedBall>(SeatedBall{seatedBallModel(voxelM), {}});
   const SimModel& model = entry->model;
   const PairModel& pair = model.pairs[0];
   const MovingObjectModel& ball = model.objects[0];
