@@ -1,9 +1,10 @@
 // Point tests eight at a time (AVX2) against one at a time: the same contacts, bit for
 // bit, for the ball in its socket at many poses, for every word width, for ranges that do
 // not fill the last eight, and for points on voxel boundaries, outside the grid, far away
-// or not numbers.
+// or not numbers; and the scalar floor of voxel coordinates against std::floor.
 #include "haptics/collide/point_sampler.h"
 
+#include <climits>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -203,6 +204,59 @@ TEST(PointSampler, TakesTheScalarPathOnAPagedVoxmap) {
   ASSERT_TRUE(paged.isPaged());
   EXPECT_EQ(pointTestPathFor(paged), PointTestPath::Scalar);
   EXPECT_EQ(pointTestPathFor(voxmap), cpuHasAvx2() ? PointTestPath::Avx2 : PointTestPath::Scalar);
+}
+
+/// floor(v) where it is an int, else INT_MIN: what voxelOf promises.
+int flooredOrIntMin(float v) {
+  const double floored = std::floor(static_cast<double>(v));
+  return std::isnan(floored) || floored < INT_MIN || floored > INT_MAX ? INT_MIN : static_cast<int>(floored);
+}
+
+TEST(PointSampler, FloorsEveryKindOfFloatAsFloorDoesAndGivesIntMinOutsideIntsRange) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  std::vector<float> values = {0.0f,
+                               -0.0f,
+                               0.5f,
+                               -0.5f,
+                               1.0f,
+                               -1.0f,
+                               0.99999994f,
+                               -0.99999994f,
+                               1e-45f,
+                               -1e-45f,
+                               16777215.0f,
+                               -16777215.0f,
+                               16777216.0f,
+                               -16777216.0f,
+                               8388607.5f,
+                               -8388607.5f,
+                               2147483520.0f,
+                               -2147483520.0f,
+                               2147483648.0f,
+                               -2147483648.0f,
+                               -2147483904.0f,
+                               3e9f,
+                               -3e9f,
+                               1e30f,
+                               -1e30f,
+                               kInf,
+                               -kInf,
+                               std::numeric_limits<float>::quiet_NaN(),
+                               -std::numeric_limits<float>::quiet_NaN()};
+  std::mt19937 random(13);
+  std::uniform_real_distribution<float> within(-4096.0f, 4096.0f);
+  for (int i = 0; i < 100000; ++i) {
+    const float v = within(random);
+    values.push_back(v);
+    values.push_back(std::nextafter(std::round(v), kInf));
+    values.push_back(std::nextafter(std::round(v), -kInf));
+  }
+  for (const float v : values) {
+    const glm::ivec3 ijk = voxelOf(glm::vec3(v, -v, v * 0.5f));
+    EXPECT_EQ(ijk.x, flooredOrIntMin(v)) << v;
+    EXPECT_EQ(ijk.y, flooredOrIntMin(-v)) << -v;
+    EXPECT_EQ(ijk.z, flooredOrIntMin(v * 0.5f)) << v * 0.5f;
+  }
 }
 
 }  // namespace
