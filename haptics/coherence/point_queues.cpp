@@ -127,29 +127,6 @@ void PointQueues::assignAll(int q) noexcept {
   counts_[static_cast<std::size_t>(q)] = pointCount_;
 }
 
-std::uint32_t PointQueues::nextAtOrAfter(int q, std::uint32_t from) const noexcept {
-  if (from >= pointCount_) return pointCount_;
-  const std::uint32_t* w = words(q);
-  const std::uint32_t* s = summary(q);
-  std::uint32_t wi = from / kWordBits;
-  // the rest of the first word
-  const std::uint32_t head = w[wi] & (~0u << (from % kWordBits));
-  if (head) return wi * kWordBits + static_cast<std::uint32_t>(std::countr_zero(head));
-  ++wi;
-  // then whole words, skipping runs of empty ones through the summary
-  while (wi < wordCount_) {
-    const std::uint32_t si = wi / kWordBits;
-    const std::uint32_t nonEmpty = s[si] & (~0u << (wi % kWordBits));
-    if (!nonEmpty) {
-      wi = (si + 1) * kWordBits;
-      continue;
-    }
-    wi = si * kWordBits + static_cast<std::uint32_t>(std::countr_zero(nonEmpty));
-    return wi * kWordBits + static_cast<std::uint32_t>(std::countr_zero(w[wi]));
-  }
-  return pointCount_;
-}
-
 std::uint32_t PointQueues::nonEmptyWords(int q, std::uint32_t block) const noexcept {
   const std::uint32_t firstWord = block * blockWords_;
   if (firstWord >= wordCount_) return 0;
@@ -216,10 +193,17 @@ PointQueues::Sweep PointQueues::takeSweep(int q, std::uint32_t minBlocks,
 }
 
 std::uint32_t PointQueues::takeAll(int q, std::span<std::uint32_t> out) const noexcept {
+  const std::uint32_t* w = words(q);
+  const std::uint32_t* s = summary(q);
   std::uint32_t written = 0;
-  for (std::uint32_t p = nextAtOrAfter(q, 0); p < pointCount_ && written < out.size();
-       p = nextAtOrAfter(q, p + 1)) {
-    out[written++] = p;
+  for (std::uint32_t si = 0; si < summaryCount_; ++si) {
+    for (std::uint32_t nonEmpty = s[si]; nonEmpty; nonEmpty &= nonEmpty - 1) {
+      const std::uint32_t wi = si * kWordBits + static_cast<std::uint32_t>(std::countr_zero(nonEmpty));
+      for (std::uint32_t word = w[wi]; word; word &= word - 1) {
+        if (written == out.size()) return written;
+        out[written++] = wi * kWordBits + static_cast<std::uint32_t>(std::countr_zero(word));
+      }
+    }
   }
   return written;
 }

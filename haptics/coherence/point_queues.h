@@ -88,8 +88,6 @@ private:
   const std::uint32_t* summary(int q) const noexcept {
     return &summary_[static_cast<std::size_t>(q) * summaryCount_];
   }
-  /// The first point ≥ `from` in queue `q`, or pointCount_ when there is none.
-  std::uint32_t nextAtOrAfter(int q, std::uint32_t from) const noexcept;
   /// Bit w set: word w of block `block` holds a point of queue `q`.
   std::uint32_t nonEmptyWords(int q, std::uint32_t block) const noexcept;
   /// Points of queue `q` in block `block`.
