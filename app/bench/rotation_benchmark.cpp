@@ -25,6 +25,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "app/bench/analytic_scenes.h"
+#include "app/bench/ball_seating.h"
 #include "app/bench/benchmark.h"
 #include "app/cache_options.h"
 #include "app/cli/number_format.h"
@@ -41,15 +42,6 @@ namespace {
 constexpr double kDefaultSizesM[] = {0.35e-3, 0.15e-3, 0.07e-3, 0.035e-3};
 /// The built-in scenes turned, in the order of the rows.
 constexpr const char* kScenes[] = {"ball-and-socket", "small-ball-and-socket"};
-/// The ball's points along their normals, voxels (inward), and the force layer of its
-/// pair with the socket (the surface voxels): what seats it (mating surfaces, paper §3.2
-/// and §7). Against half a voxel and the paper's layer 4 (two free layers), measured at
-/// 0.35 mm (stop 34): turns 3.4 and 1.7–2.3 times as fast (25 and 12.5 mm ball), 25–31
-/// times fewer contacts, the ball's centre within 0.03 mm of the socket's instead of
-/// 0.25 mm, the exact penetration 0.06–0.10 mm instead of 0.17–0.19 mm (the meshes' own
-/// facets cross by up to 0.1 mm with the ball centred).
-constexpr double kBallPointOffsetVoxels = -1.0;
-constexpr std::uint8_t kBallForceLayer = kValueFeature;
 /// How far the handle leads the ball, rad: a user turning it steadily.
 constexpr double kLeadRad = 0.1;
 /// The ball's exact penetration of the socket is measured at every this many frames' poses

@@ -3,8 +3,8 @@
 // through its centre in its socket by the pair's MaxTravel a frame (its farthest point
 // moves that far), and each iteration is one frame of its coherence: the chunk tests,
 // the due points collected from the queues, and their tests (drift, voxmap lookup, queue
-// moves), the ball seated as that benchmark seats it (seated_ball_model.h). Counters: point tests per second;
-// tests, contacts and tests that drifted (no lookup) per frame.
+// moves), the ball seated as that benchmark seats it (seated_ball_model.h). Counters:
+// point tests per second; tests, contacts and tests that drifted (no lookup) per frame.
 #include <benchmark/benchmark.h>
 #include <glm/gtc/quaternion.hpp>
 

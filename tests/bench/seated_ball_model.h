@@ -1,10 +1,11 @@
 #pragma once
-// The 25 mm ball in its socket as `voxhap bench rotation` seats it (rotation_benchmark.cpp:
-// its points a voxel inward, the surface voxels its pair's force layer), built once per
-// voxel size for the micro-benchmarks that measure pieces of that benchmark's frames.
+// The 25 mm ball in its socket as `voxhap bench rotation` seats it (app/bench/ball_seating.h),
+// built once per voxel size for the micro-benchmarks that measure pieces of that
+// benchmark's frames.
 #include <map>
 #include <memory>
 
+#include "app/bench/ball_seating.h"
 #include "haptics/scene/builtin/builtin_scenes.h"
 #include "haptics/sim/scene_model.h"
 
@@ -17,8 +18,8 @@ inline const SimModel& seatedBallModel(double voxelM) {
   SceneModelOptions options;
   options.staticVoxelSizeM = voxelM;
   options.pointSpacingM = voxelM;
-  options.pointDisplacementM = -voxelM;
-  options.forceLayerOf = {{"ball", kValueFeature}};
+  options.pointDisplacementM = kBallPointOffsetVoxels * voxelM;
+  options.forceLayerOf = {{"ball", kBallForceLayer}};
   entry = std::make_unique<SimModel>(buildSceneModel(makeBallAndSocket(), {"ball"}, options));
   return *entry;
 }
