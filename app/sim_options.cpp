@@ -88,6 +88,11 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
         command.add_flag("--no-drifting", o.noDrifting,
                          "look every due point up in the voxmap (no point drifting, paper §5.2)");
         break;
+      case SimOption::FrameHelper:
+        command.add_flag("--frame-helper", o.frameHelper,
+                         "a second thread, pinned to a spare core, tests half the due points of large "
+                         "frames (the same results; it keeps that core busy while frames run)");
+        break;
       case SimOption::DeviceProfile:
         addParsedOption(command, "--device-profile", "NAME",
                         "the device's force, torque and stiffness limits, one of: " + deviceProfileNames() +
@@ -115,6 +120,10 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
         break;
     }
   }
+}
+
+std::shared_ptr<FrameHelper> frameHelperFor(const SimOptions& options) {
+  return options.frameHelper ? std::make_shared<FrameHelper>() : nullptr;
 }
 
 CacheOptions voxelCacheOptions(const SimOptions& options) {

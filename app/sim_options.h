@@ -2,7 +2,7 @@
 /// The simulation options `voxhap` commands share, defined once as typed fields: resolution
 /// and sampling (--voxel-size, --point-spacing, --point-offset, --point-layer,
 /// --no-awareness, --pre-contact-damping, --paper-contact), time-critical sampling (--capacity,
-/// --brute-force, --no-drifting), paging (--voxel-memory), the device (--device-profile),
+/// --brute-force, --no-drifting, --frame-helper), paging (--voxel-memory), the device (--device-profile),
 /// the run (--duration), the exact checks' probes (--probe-spacing) and the voxel cache
 /// (--cache-dir, --no-cache). Each command adds the ones it takes to its CLI::App; their
 /// values are parsed and checked while the command line is (option_values.h).
@@ -10,11 +10,13 @@
 #include <cstdint>
 #include <initializer_list>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "app/cli/console.h"
 #include "haptics/dynamics/virtual_coupling.h"
+#include "haptics/runtime/frame_helper.h"
 #include "haptics/sim/scene_model.h"
 #include "haptics/voxel/voxel_cache.h"
 
@@ -36,6 +38,7 @@ struct SimOptions {
   bool paperContact = false;              ///< --paper-contact: the paper's voxel planes, not surface planes
   bool bruteForce = false;                ///< --brute-force: every point every frame
   bool noDrifting = false;                ///< --no-drifting: no point drifting
+  bool frameHelper = false;               ///< --frame-helper: a second thread tests half the points
   std::optional<std::uint64_t> capacity;  ///< --capacity: point tests per frame (≥ 1)
   std::optional<std::uint64_t> voxelMemoryBytes;  ///< --voxel-memory: for the static voxels, bytes
   std::optional<DeviceLimits> deviceLimits;       ///< --device-profile NAME: that profile's limits
@@ -59,6 +62,7 @@ enum class SimOption {
   VoxelMemory,
   BruteForce,
   NoDrifting,
+  FrameHelper,
   DeviceProfile,
   Duration,
   ProbeSpacing,
@@ -70,6 +74,10 @@ enum class SimOption {
 /// that has more to say (its default, say) replaces it with
 /// `command.get_option("--voxel-size")->description(…)`.
 void addSimOptions(CLI::App& command, SimOptions& options, std::initializer_list<SimOption> which);
+
+/// The frame helper `options` ask for (--frame-helper), or null. Throws Error where there
+/// is no spare core.
+std::shared_ptr<FrameHelper> frameHelperFor(const SimOptions& options);
 
 /// The voxel cache `options` ask for; by default userCacheDir()/voxels.
 CacheOptions voxelCacheOptions(const SimOptions& options);

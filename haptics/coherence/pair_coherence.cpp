@@ -8,6 +8,7 @@
 
 #include "haptics/coherence/max_travel.h"
 #include "haptics/collide/point_sampler_avx2.h"
+#include "haptics/runtime/frame_helper.h"
 
 namespace voxhap {
 namespace {
@@ -21,8 +22,11 @@ constexpr int kChunkTestNow = 1;
 /// under kCollapsedMin (the difference keeps chunks from flapping).
 constexpr int kCollapseAt = 3;
 constexpr int kCollapsedMin = 2;
-/// Points whose voxel words testDue reads before it looks at any of them.
-constexpr std::size_t kTestBatch = 16;
+/// Points whose voxel words testShare reads before it looks at any of them.
+constexpr std::uint32_t kTestBatch = 16;
+/// testDue hands half its points to a frame helper from this many on (fewer would not
+/// repay the hand-over).
+constexpr std::uint32_t kHelpedTests = 1024;
 
 }  // namespace
 
@@ -38,7 +42,8 @@ PairCoherence::PairCoherence(const Pointshell& shell, double voxelSizeM, std::ui
       dueEndByQueue_(static_cast<std::size_t>(queueCountFor(1, maxValue)), 0),
       drifting_(drifting),
       lookupVoxel_(drifting ? shell.size() : 0),
-      lookupQueue_(drifting ? shell.size() : 0, 0) {
+      lookupQueue_(drifting ? shell.size() : 0, 0),
+      moves_(shell.size()) {
   for (std::size_t c = 0; c < shell.chunkCount(); ++c) {
     float radiusM = 0.0f;
     for (std::uint32_t p = chunkBegin_[c]; p < chunkBegin_[c + 1]; ++p) {
@@ -203,22 +208,52 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
                                              const VoxelTransform& transform,
                                              const std::array<std::uint8_t, 3>& fieldShifts,
                                              std::uint8_t sampledLayer, std::span<const std::uint32_t> due,
-                                             PointContact* contacts, VoxelPager* pager) noexcept {
-  PointQueues& queues = points_.queues();
+                                             PointContact* contacts, VoxelPager* pager,
+                                             FrameHelper* helper) noexcept {
+  const auto n = static_cast<std::uint32_t>(due.size());
+  // the helper takes the last half; a paged voxmap is read by the haptic thread alone
+  const std::uint32_t mine = helper && !pager && n >= kHelpedTests ? n / 2 : n;
+  Share theirs;
+  auto helperShare = [&] {
+    theirs = testShare(shell, voxmap, transform, fieldShifts, sampledLayer, due, mine, n, contacts + mine);
+  };
+  if (mine < n) helper->run(helperShare);
+  const Share first = testShare(shell, voxmap, transform, fieldShifts, sampledLayer, due, 0, mine, contacts);
   Tested tested;
+  moveTested(shell, transform, first, 0, pager, tested);
+  tested.contacts = first.contacts;
+  if (mine < n) {
+    helper->finish();
+    if (first.contacts < mine)
+      std::copy(contacts + mine, contacts + mine + theirs.contacts, contacts + first.contacts);
+    moveTested(shell, transform, theirs, mine, pager, tested);
+    tested.contacts += theirs.contacts;
+  }
+  return tested;
+}
+
+PairCoherence::Share PairCoherence::testShare(const Pointshell& shell, const Voxmap& voxmap,
+                                              const VoxelTransform& transform,
+                                              const std::array<std::uint8_t, 3>& fieldShifts,
+                                              std::uint8_t sampledLayer, std::span<const std::uint32_t> due,
+                                              std::uint32_t begin, std::uint32_t end,
+                                              PointContact* contacts) noexcept {
+  Share share;
+  Move* moves = moves_.data() + begin;
   const VoxelWord fieldMask = voxmap.encoding().fieldMask();
-  std::uint32_t at = 0;
+  std::uint32_t at = begin;
   const int queueCount = queueCountFor(forceLayer_, maxValue_);
   const bool avx2 = pointTestPathFor(voxmap) == PointTestPath::Avx2;
-  for (int q = 0; q < queueCount; ++q) {
-    const auto end = std::min<std::size_t>(dueEndByQueue_[static_cast<std::size_t>(q)], due.size());
+  for (int q = 0; q < queueCount && at < end; ++q) {
+    const std::uint32_t queueEnd = std::min(dueEndByQueue_[static_cast<std::size_t>(q)], end);
     const bool mayDrift = drifting_ && q >= kMandatoryQueues;
-    while (at < end) {
+    const auto from = static_cast<std::uint8_t>(q);
+    while (at < queueEnd) {
       // Each batch reads its voxel words first, all independent loads (eight at a time
       // with AVX2), so that their cache misses overlap; then classifies the points in
       // order, as one at a time would. Points that drifted no nearer than two voxels from
       // their last lookup read nothing.
-      const auto batch = static_cast<std::uint32_t>(std::min<std::size_t>(kTestBatch, end - at));
+      const std::uint32_t batch = std::min<std::uint32_t>(kTestBatch, queueEnd - at);
       std::array<glm::vec3, kTestBatch> voxels;
       std::array<float, kTestBatch> guaranteedVoxels;  // by the last lookup, drifting; else 0
       std::array<glm::ivec3, kTestBatch> ijks;         // of the points that read, in order
@@ -239,42 +274,53 @@ PairCoherence::Tested PairCoherence::testDue(const Pointshell& shell, const Voxm
       std::uint32_t read = 0;
       for (std::uint32_t k = 0; k < batch; ++k, ++at) {
         const std::uint32_t point = due[at];
-        const glm::vec3& voxel = voxels[k];
         if (guaranteedVoxels[k] >= 2.0f) {
-          queues.move(point, q, std::min(q, static_cast<int>(guaranteedVoxels[k]) + 1));
-          ++tested.drifted;
+          ++share.drifted;
+          const int to = std::min(q, static_cast<int>(guaranteedVoxels[k]) + 1);
+          if (to != q) moves[share.moves++] = {point, from, static_cast<std::uint8_t>(to), false};
           continue;
         }
         const glm::ivec3 ijk = ijks[read];
         const VoxelWord word = words[read++];
         if (word == Voxmap::kMissingWord) {  // tested again once its chunk is (asked to be) resident
-          ++tested.missing;
-          queues.move(point, q, 1);
+          moves[share.moves++] = {point, from, 1, true};
           if (drifting_) lookupQueue_[point] = 0;
-          const glm::ivec3 chunk = glm::ivec3(glm::floor(voxel / float(kChunkEdgeVoxels)));
-          if (chunk != tested.lastAskedChunk) askAround(pager, voxel, kChunkEdgeVoxels);
-          tested.lastAskedChunk = chunk;  // neighbours miss together: one request for a run of them
           continue;
         }
         const std::uint8_t value =
             fieldValue(word, fieldShifts[static_cast<std::size_t>(shell.features[point])], fieldMask);
         // value − 1 wraps far (0) to 255, so one compare keeps [1, sampledLayer]
         if (static_cast<std::uint8_t>(value - 1u) < sampledLayer) {
-          PointContact& contact = contacts[tested.contacts++];  // field by field, as samplePoints
+          PointContact& contact = contacts[share.contacts++];  // field by field, as samplePoints
           contact.point = point;
           contact.ijkVoxel = ijk;
           contact.value = value;
         }
-        const int found = queueForValue(value, forceLayer_, maxValue_);
-        queues.move(point, q, found);
+        const auto to = static_cast<std::uint8_t>(queueForValue(value, forceLayer_, maxValue_));
+        if (to != from) moves[share.moves++] = {point, from, to, false};
         if (drifting_) {
-          lookupVoxel_[point] = voxel;
-          lookupQueue_[point] = static_cast<std::uint8_t>(found);
+          lookupVoxel_[point] = voxels[k];
+          lookupQueue_[point] = to;
         }
       }
     }
   }
-  return tested;
+  return share;
+}
+
+void PairCoherence::moveTested(const Pointshell& shell, const VoxelTransform& transform, const Share& share,
+                               std::uint32_t begin, VoxelPager* pager, Tested& tested) noexcept {
+  PointQueues& queues = points_.queues();
+  tested.drifted += share.drifted;
+  for (const Move& m : std::span(moves_).subspan(begin, share.moves)) {
+    queues.move(m.point, m.from, m.to);
+    if (!m.missing) continue;
+    ++tested.missing;
+    const glm::vec3 voxel = transform.apply(shell.positionsLocal[m.point]);
+    const glm::ivec3 chunk = glm::ivec3(glm::floor(voxel / float(kChunkEdgeVoxels)));
+    if (chunk != tested.lastAskedChunk) askAround(pager, voxel, kChunkEdgeVoxels);
+    tested.lastAskedChunk = chunk;  // neighbours miss together: one request for a run of them
+  }
 }
 
 }  // namespace voxhap

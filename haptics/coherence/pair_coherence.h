@@ -52,6 +52,8 @@ struct CoherenceLoad {
   TestsByTravel tests{};        ///< other tests at each travel scale (max_travel.h)
 };
 
+class FrameHelper;
+
 class PairCoherence {
 public:
   /// For `shell` against voxels of size `voxelSizeM` whose largest value is `maxValue`,
@@ -98,11 +100,14 @@ public:
     glm::ivec3 lastAskedChunk{-1 << 30};  ///< the voxmap chunk last asked for
   };
   /// Tests the points collectDue() returned; writes those whose value lies in
-  /// [1, sampledLayer] to `contacts` (room for due.size()). A point whose chunk of the
-  /// voxmap is paged out becomes mandatory and asks `pager` for it.
+  /// [1, sampledLayer] to `contacts` (room for due.size()), in the order of `due`. A point
+  /// whose chunk of the voxmap is paged out becomes mandatory and asks `pager` for it.
+  /// With a `helper` (and a whole voxmap: `pager` null) the helper tests the last half of
+  /// a frame's points meanwhile; the results are the same bits either way.
   Tested testDue(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
                  const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
-                 std::span<const std::uint32_t> due, PointContact* contacts, VoxelPager* pager) noexcept;
+                 std::span<const std::uint32_t> due, PointContact* contacts, VoxelPager* pager,
+                 FrameHelper* helper = nullptr) noexcept;
 
   /// Call at the end of a frame in range with the relative travel it allowed: it sets the
   /// next frame's sweeps (swept_queues.h).
@@ -119,6 +124,24 @@ private:
   /// Asks `pager` for the voxmap chunks within `radiusVoxels` of `voxel`.
   static void askAround(VoxelPager* pager, const glm::vec3& voxel, float radiusVoxels) noexcept;
   double chunkDistanceM(int q) const noexcept;
+  /// What testShare found in its share of the due points.
+  struct Share {
+    std::uint32_t contacts = 0;  ///< written from its `contacts`
+    std::uint32_t moves = 0;     ///< written to moves_ from its `begin`
+    std::uint32_t drifted = 0;   ///< tests that skipped the lookup
+  };
+  /// testDue's first pass, over `due[begin, end)`: reads and drift, each point's lookup,
+  /// its contacts written from `contacts` on and the queue moves it asks for from
+  /// moves_[begin] on. It moves no queue and asks no pager, so that two shares may run on
+  /// two threads.
+  Share testShare(const Pointshell& shell, const Voxmap& voxmap, const VoxelTransform& transform,
+                  const std::array<std::uint8_t, 3>& fieldShifts, std::uint8_t sampledLayer,
+                  std::span<const std::uint32_t> due, std::uint32_t begin, std::uint32_t end,
+                  PointContact* contacts) noexcept;
+  /// testDue's second pass over the share that began at `begin`, in order: its queue moves,
+  /// and the pager asked for the chunks of the points that missed; adds to `tested`.
+  void moveTested(const Pointshell& shell, const VoxelTransform& transform, const Share& share,
+                  std::uint32_t begin, VoxelPager* pager, Tested& tested) noexcept;
   double pointDistanceM(int q) const noexcept;
 
   SweptQueues points_;
@@ -132,7 +155,15 @@ private:
   bool drifting_;
   std::vector<glm::vec3> lookupVoxel_;     // per point, where its last lookup was (voxel coordinates)
   std::vector<std::uint8_t> lookupQueue_;  // per point, the queue that lookup found; 0: none
-  double lastTravelM_ = 0.0;               // relative travel allowed in the frame before
+  /// A queue move that a test asks for (testShare), made by moveTested.
+  struct Move {
+    std::uint32_t point;
+    std::uint8_t from;
+    std::uint8_t to;
+    bool missing;  ///< its voxmap chunk was paged out
+  };
+  std::vector<Move> moves_;   // room for a move per due point
+  double lastTravelM_ = 0.0;  // relative travel allowed in the frame before
 };
 
 }  // namespace voxhap

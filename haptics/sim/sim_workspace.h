@@ -12,6 +12,7 @@
 
 #include "haptics/coherence/pair_coherence.h"
 #include "haptics/collide/point_sampler.h"
+#include "haptics/runtime/frame_helper.h"
 #include "haptics/sim/depth_limit.h"
 #include "haptics/sim/sim_model.h"
 #include "haptics/sim/sim_state.h"
@@ -65,6 +66,10 @@ struct SimWorkspace {
   /// outlive it; threads other than the haptic thread read that voxmap through
   /// staticPager->addReader().
   std::shared_ptr<VoxelPager> staticPager;
+  /// A second thread, pinned to a spare core, that tests half the due points of a pair's
+  /// large frames (frame_helper.h); null: the haptic thread tests them all. The same
+  /// results either way.
+  std::shared_ptr<FrameHelper> helper;
 
   // scratch of one frame
   std::vector<PairFrame> pairFrames;       ///< per pair

@@ -154,8 +154,9 @@ std::uint32_t findContacts(const SimModel& model, SimWorkspace& ws, CoherenceFra
   plan.chunkTests += coherence.updateChunks(shell, voxmap, transform, ws.dueChunks, pager);
   const std::uint32_t due = coherence.collectDue(ws.due);
   tested += due;
-  const PairCoherence::Tested t = coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
-                                                    std::span(ws.due.data(), due), ws.contacts.data(), pager);
+  const PairCoherence::Tested t =
+      coherence.testDue(shell, voxmap, transform, pair.fieldShifts, sampledLayer,
+                        std::span(ws.due.data(), due), ws.contacts.data(), pager, ws.helper.get());
   plan.drifted += t.drifted;
   missing += t.missing;
   coherence.endFrame(travelM);

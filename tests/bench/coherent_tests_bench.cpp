@@ -5,10 +5,14 @@
 // the due points collected from the queues, and their tests (drift, voxmap lookup, queue
 // moves), the ball seated as that benchmark seats it (seated_ball_model.h). Counters:
 // point tests per second; tests, contacts and tests that drifted (no lookup) per frame.
+// The second argument 1: a frame helper (a second thread, frame_helper.h) tests half.
+#include <memory>
+
 #include <benchmark/benchmark.h>
 #include <glm/gtc/quaternion.hpp>
 
 #include "haptics/coherence/pair_coherence.h"
+#include "haptics/runtime/frame_helper.h"
 #include "tests/bench/seated_ball_model.h"
 
 namespace voxhap {
@@ -26,6 +30,7 @@ void coherentTests(benchmark::State& state) {
   std::vector<std::uint32_t> due(shell.size());
   std::vector<std::uint32_t> dueChunks(shell.chunkCount());
   std::vector<PointContact> contacts(shell.size());
+  const auto helper = state.range(1) ? std::make_unique<FrameHelper>() : nullptr;
   const double travelM = ball.maxTravelM;
   const double turnPerFrameRad = travelM / ball.shellRadiusM;
   const auto poseAt = [&](double angleRad) {
@@ -45,7 +50,7 @@ void coherentTests(benchmark::State& state) {
     const std::uint32_t n = coherence.collectDue(due);
     const PairCoherence::Tested t =
         coherence.testDue(shell, socket, transform, pair.fieldShifts, sampledLayer, std::span(due.data(), n),
-                          contacts.data(), nullptr);
+                          contacts.data(), nullptr, helper.get());
     coherence.endFrame(travelM);
     tests += n;
     found += t.contacts;
@@ -57,8 +62,8 @@ void coherentTests(benchmark::State& state) {
   state.counters["drifted_per_frame"] = drifted / frames;
   state.counters["tests_per_s"] = benchmark::Counter(tests, benchmark::Counter::kIsRate);
 }
-// voxel size in units of 10 µm: 0.35 mm and 0.15 mm
-BENCHMARK(coherentTests)->Arg(35)->Arg(15)->Unit(benchmark::kMicrosecond);
+// voxel size in units of 10 µm (0.35 mm and 0.15 mm), and without or with a helper
+BENCHMARK(coherentTests)->ArgsProduct({{35, 15}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace voxhap

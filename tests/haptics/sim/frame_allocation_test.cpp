@@ -1,5 +1,9 @@
 // The 1 kHz frame never allocates (CONVENTIONS): from the first frame on, stepping makes
 // no heap allocation on the thread that steps (support/allocation_counter.h).
+#include <memory>
+#include <optional>
+#include <thread>
+
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
@@ -49,9 +53,10 @@ TEST(FrameAllocation, SteppingThemWithSurfacePlanesAllocatesNothing) {
   expectTwoBoxesAllocateNothing(true);
 }
 
-TEST(FrameAllocation, TurningTheSeatedBallWithItsCapacityMeasuredOnlineAllocatesNothing) {
-  // the built-in ball and socket, the ball held by its handle, turned and pushed into the
-  // socket; time-critical sampling plans with the capacity measured from the frames' times
+/// The built-in ball and socket, the ball held by its handle, turned and pushed into the
+/// socket, 300 frames; time-critical sampling plans with the capacity measured from the
+/// frames' times. With a frame helper, its thread must not allocate either.
+void expectTheTurnedBallAllocatesNothing(bool helped) {
   constexpr double voxel = 0.0005;
   SceneModelOptions options;
   options.staticVoxelSizeM = voxel;
@@ -62,6 +67,13 @@ TEST(FrameAllocation, TurningTheSeatedBallWithItsCapacityMeasuredOnlineAllocates
   const SimModel model = buildSceneModel(makeBallAndSocket(), {"ball"}, options);
   ASSERT_TRUE(model.objects[0].coupled);
   LocalSimulation sim(model);
+  std::optional<test::AllocationCounter> helperAllocations;
+  if (helped) {
+    sim.workspace.helper = std::make_shared<FrameHelper>();
+    auto count = [&] { helperAllocations.emplace(); };
+    sim.workspace.helper->run(count);
+    sim.workspace.helper->finish();
+  }
   const Pose seated = objectPose(model, sim.state, 0);
   HandleInput handle[1] = {{seated, {}}};
   const ExternalWrench push[1] = {{glm::dvec3(0.0, 0.0, -2.0), glm::dvec3(0.0)}};
@@ -76,7 +88,24 @@ TEST(FrameAllocation, TurningTheSeatedBallWithItsCapacityMeasuredOnlineAllocates
   }
   EXPECT_EQ(allocations.count(), 0u);
   EXPECT_GT(contactFrames, 250u) << "the frames tested little contact";
-  EXPECT_GT(sim.outputs.coherence.tested, 0u);
+  EXPECT_GT(sim.outputs.coherence.tested, 1024u) << "too few tests a frame for the helper to take a share";
+  if (helped) {
+    std::uint64_t helperCount = 0;
+    auto read = [&] { helperCount = helperAllocations->count(); };
+    sim.workspace.helper->run(read);
+    sim.workspace.helper->finish();
+    EXPECT_EQ(helperCount, 0u) << "on the helper's thread";
+  }
+}
+
+TEST(FrameAllocation, TurningTheSeatedBallWithItsCapacityMeasuredOnlineAllocatesNothing) {
+  expectTheTurnedBallAllocatesNothing(false);
+}
+
+TEST(FrameAllocation, TurningItWithAFrameHelperAllocatesNothingOnEitherThread) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
+  // on a thread of its own: a helper keeps the thread that makes it off its CPU
+  std::thread([] { expectTheTurnedBallAllocatesNothing(true); }).join();
 }
 
 }  // namespace

@@ -1,0 +1,78 @@
+#include "haptics/runtime/frame_helper.h"
+
+#include <atomic>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <sched.h>
+
+#include "haptics/core/error.h"
+
+namespace voxhap {
+namespace {
+
+/// Runs `body` on a thread of its own (a helper keeps the thread that makes it off its CPU:
+/// the test's main thread keeps all of them), skipping where there is no spare core.
+template <typename Body>
+void onAThreadOfItsOwn(Body body) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
+  std::thread(body).join();
+}
+
+TEST(FrameHelper, RunsEachJobOnItsOwnCpuWhileTheMakerStaysOffIt) {
+  onAThreadOfItsOwn([] {
+    FrameHelper helper;
+    int jobCpu = -1;
+    auto job = [&] { jobCpu = sched_getcpu(); };
+    helper.run(job);
+    const int makerCpu = sched_getcpu();
+    helper.finish();
+    EXPECT_EQ(jobCpu, helper.cpu());
+    EXPECT_NE(makerCpu, helper.cpu());
+  });
+}
+
+TEST(FrameHelper, FinishReturnsOnlyOnceTheJobHasReturned) {
+  onAThreadOfItsOwn([] {
+    FrameHelper helper;
+    std::uint64_t sum = 0;  // plain: finish() must order the helper's writes before our reads
+    for (std::uint64_t i = 1; i <= 20000; ++i) {
+      auto job = [&sum, i] { sum += i; };
+      helper.run(job);
+      helper.finish();
+      ASSERT_EQ(sum, i * (i + 1) / 2);
+    }
+  });
+}
+
+TEST(FrameHelper, WakesForAJobAfterSleeping) {
+  onAThreadOfItsOwn([] {
+    FrameHelper helper;
+    for (int round = 0; round < 2; ++round) {
+      std::this_thread::sleep_for(2 * FrameHelper::kIdleBeforeSleep);
+      bool ran = false;
+      auto job = [&] { ran = true; };
+      helper.run(job);
+      helper.finish();
+      EXPECT_TRUE(ran) << "round " << round;
+    }
+  });  // and the destructor stops a sleeping helper
+}
+
+TEST(FrameHelper, RefusesWhereTheMakerMayRunOnOneCpuOnly) {
+  onAThreadOfItsOwn([] {
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(static_cast<std::size_t>(sched_getcpu()), &one);
+    ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);
+    try {
+      FrameHelper helper;
+      ADD_FAILURE() << "a helper on CPU " << helper.cpu() << " beside a thread pinned to one CPU";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("spare core"), std::string::npos) << e.what();
+    }
+  });
+}
+
+}  // namespace
+}  // namespace voxhap
