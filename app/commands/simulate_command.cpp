@@ -84,6 +84,7 @@ int runSimulate(const SimulateArgs& args, const CommandContext& c) {
   std::vector<HapticDevice*> deviceOf(model.objects.size(), nullptr);
   for (std::size_t i = 0; i < devices.size(); ++i) deviceOf[i] = devices[i].get();
   LocalSimulation sim(model, std::move(built.staticPager));
+  sim.workspace.helper = frameHelperFor(args.sim);
   const SimState& state = sim.state;
   FrameStats stats;
   ExactCheckSummary exactSummary;
@@ -188,7 +189,7 @@ void addSimulateCommand(CommandTree& tree) {
       {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::ForceLayerOf,
        SimOption::PointLayer, SimOption::NoAwareness, SimOption::PreContactDamping, SimOption::PaperContact,
        SimOption::Capacity, SimOption::VoxelMemory, SimOption::BruteForce, SimOption::NoDrifting,
-       SimOption::DeviceProfile, SimOption::Duration});
+       SimOption::FrameHelper, SimOption::DeviceProfile, SimOption::Duration});
   command.get_option("--voxel-size")
       ->description("voxel size of the static scene, e.g. 0.35mm (default 1mm)");
   command.get_option("--duration")->description("simulated time (default: the longest script)");

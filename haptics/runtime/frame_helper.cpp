@@ -33,10 +33,11 @@ int spareCpu() {
 
 }  // namespace
 
-FrameHelper::FrameHelper() : cpu_(spareCpu()) {
+FrameHelper::FrameHelper() : cpu_(spareCpu()), maker_(pthread_self()) {
   if (cpu_ < 0) throw Error("a frame helper needs a spare core: this process may run on one CPU only");
-  cpu_set_t others;
-  if (sched_getaffinity(0, sizeof others, &others) != 0) throw Error("cannot read this thread's CPUs");
+  if (sched_getaffinity(0, sizeof makerCpus_, &makerCpus_) != 0)
+    throw Error("cannot read this thread's CPUs");
+  cpu_set_t others = makerCpus_;
   CPU_CLR(static_cast<std::size_t>(cpu_), &others);
   cpu_set_t only;
   CPU_ZERO(&only);
@@ -57,6 +58,7 @@ FrameHelper::~FrameHelper() {
   stop_ = true;
   post(nullptr, nullptr);
   thread_.join();
+  if (pthread_equal(pthread_self(), maker_)) pthread_setaffinity_np(maker_, sizeof makerCpus_, &makerCpus_);
 }
 
 void FrameHelper::post(void* job, void (*call)(void*)) noexcept {

@@ -10,13 +10,17 @@
 /// takes a whole core while frames run: it is for machines with one to spare.
 ///
 /// Pinned to the last CPU that the making thread may run on, and that thread (make the
-/// helper on the haptic thread) kept off it, so that the two never share a core; with
-/// only one CPU the constructor refuses (there is no spare core).
+/// helper on the haptic thread) kept off it until the helper is destroyed on it, so that
+/// the two never share a core; with only one CPU the constructor refuses (there is no
+/// spare core).
 
 #include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <thread>
+
+#include <pthread.h>
+#include <sched.h>
 
 #include "haptics/runtime/cache_line.h"
 
@@ -30,7 +34,8 @@ public:
   /// Starts the thread and pins it, and keeps the calling thread off its CPU. Throws Error
   /// when the caller may run on a single CPU or the threads cannot be pinned.
   FrameHelper();
-  /// Stops and joins the thread (after the job in hand, if any).
+  /// Stops and joins the thread (after the job in hand, if any); on the thread that made
+  /// it, gives that thread its CPUs back.
   ~FrameHelper();
   FrameHelper(const FrameHelper&) = delete;
   FrameHelper& operator=(const FrameHelper&) = delete;
@@ -52,6 +57,8 @@ private:
   void loop() noexcept;
 
   int cpu_ = -1;
+  pthread_t maker_;
+  cpu_set_t makerCpus_;  // before the helper
   void* job_ = nullptr;
   void (*call_)(void*) = nullptr;
   alignas(kCacheLineBytes) std::atomic<std::uint32_t> posted_{0};  // jobs posted; +1 also to stop

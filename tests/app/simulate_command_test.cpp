@@ -1,6 +1,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -64,6 +65,45 @@ TEST_F(SimulateCommand, AFixedCapacityRepeatsAndBruteForceTestsEveryPoint) {
       {"simulate", asset("ball-and-socket.glb"), "--move", "ball", "--script", script, "--capacity", "0"});
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("capacity"), std::string::npos) << bad.err;
+}
+
+// --frame-helper: the same frames, bit for bit (the trace's every column but compute time).
+TEST_F(SimulateCommand, AFrameHelperGivesTheSameTrace) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
+  const std::string script = writeScript("0 1 0 0 0 0 0 0\n0.1 0.995 0.0998 0 0 0 0 0\n");
+  auto traceOf = [&](const std::string& file, std::initializer_list<std::string> extra) {
+    std::vector<std::string> args = {"simulate",
+                                     asset("ball-and-socket.glb"),
+                                     "--move",
+                                     "ball",
+                                     "--script",
+                                     script,
+                                     "--voxel-size",
+                                     "1mm",
+                                     "--point-offset=-1mm",
+                                     "--capacity=5000",
+                                     "--trace",
+                                     file};
+    args.insert(args.end(), extra);
+    const CliRun r = voxhap(args);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream in(dir_ / file);
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(in, line);) rows.push_back(line.substr(0, line.rfind(',')));
+    return rows;
+  };
+  const std::vector<std::string> alone = traceOf("alone.csv", {});
+  const std::vector<std::string> helped = traceOf("helped.csv", {"--frame-helper"});
+  ASSERT_EQ(alone.size(), 101u);
+  EXPECT_EQ(alone, helped);
+  int wellTested = 0;  // frames whose tests the helper shared (1,024 or more)
+  for (std::size_t row = 1; row < alone.size(); ++row) {
+    std::stringstream fields(alone[row]);
+    std::string field;
+    for (int column = 0; column <= 17; ++column) std::getline(fields, field, ',');
+    wellTested += std::stoi(field) >= 1024 ? 1 : 0;
+  }
+  EXPECT_GT(wellTested, 50);
 }
 
 TEST_F(SimulateCommand, MalformedScriptNamesFileAndLine) {

@@ -32,6 +32,22 @@ TEST(FrameHelper, RunsEachJobOnItsOwnCpuWhileTheMakerStaysOffIt) {
   });
 }
 
+TEST(FrameHelper, GivesTheMakerItsCpusBackWhenDestroyedOnIt) {
+  onAThreadOfItsOwn([] {
+    cpu_set_t before;
+    ASSERT_EQ(sched_getaffinity(0, sizeof before, &before), 0);
+    for (int helper = 0; helper < 2; ++helper) {  // a second one finds a spare core again
+      FrameHelper h;
+      cpu_set_t during;
+      ASSERT_EQ(sched_getaffinity(0, sizeof during, &during), 0);
+      EXPECT_FALSE(CPU_ISSET(static_cast<std::size_t>(h.cpu()), &during));
+    }
+    cpu_set_t after;
+    ASSERT_EQ(sched_getaffinity(0, sizeof after, &after), 0);
+    EXPECT_TRUE(CPU_EQUAL(&before, &after));
+  });
+}
+
 TEST(FrameHelper, FinishReturnsOnlyOnceTheJobHasReturned) {
   onAThreadOfItsOwn([] {
     FrameHelper helper;
