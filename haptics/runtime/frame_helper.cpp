@@ -20,7 +20,7 @@ void spinPause() noexcept {
 #endif
 }
 
-/// The last CPU the calling process may run on, or −1 when it may run on only one.
+/// The last CPU the calling thread may run on, or −1 when it may run on only one.
 int spareCpu() {
   cpu_set_t allowed;
   CPU_ZERO(&allowed);
@@ -34,7 +34,7 @@ int spareCpu() {
 }  // namespace
 
 FrameHelper::FrameHelper() : cpu_(spareCpu()), maker_(pthread_self()) {
-  if (cpu_ < 0) throw Error("a frame helper needs a spare core: this process may run on one CPU only");
+  if (cpu_ < 0) throw Error("a frame helper needs a spare core: this thread may run on one CPU only");
   if (sched_getaffinity(0, sizeof makerCpus_, &makerCpus_) != 0)
     throw Error("cannot read this thread's CPUs");
   cpu_set_t others = makerCpus_;
@@ -55,6 +55,7 @@ FrameHelper::FrameHelper() : cpu_(spareCpu()), maker_(pthread_self()) {
 }
 
 FrameHelper::~FrameHelper() {
+  finish();
   stop_ = true;
   post(nullptr, nullptr);
   thread_.join();

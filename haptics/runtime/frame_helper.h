@@ -34,7 +34,7 @@ public:
   /// Starts the thread and pins it, and keeps the calling thread off its CPU. Throws Error
   /// when the caller may run on a single CPU or the threads cannot be pinned.
   FrameHelper();
-  /// Stops and joins the thread (after the job in hand, if any); on the thread that made
+  /// Waits for the job in hand, if any, stops and joins the thread; on the thread that made
   /// it, gives that thread its CPUs back.
   ~FrameHelper();
   FrameHelper(const FrameHelper&) = delete;
