@@ -24,9 +24,6 @@ constexpr int kCollapseAt = 3;
 constexpr int kCollapsedMin = 2;
 /// Points whose voxel words testShare reads before it looks at any of them.
 constexpr std::uint32_t kTestBatch = 16;
-/// testDue hands half its points to a frame helper from this many on (fewer would not
-/// repay the hand-over).
-constexpr std::uint32_t kHelpedTests = 1024;
 
 }  // namespace
 

@@ -56,6 +56,10 @@ class FrameHelper;
 
 class PairCoherence {
 public:
+  /// testDue hands half its points to a frame helper from this many on (fewer would not
+  /// repay the hand-over).
+  static constexpr std::uint32_t kHelpedTests = 1024;
+
   /// For `shell` against voxels of size `voxelSizeM` whose largest value is `maxValue`,
   /// with force layer `forceLayer`; `drifting` turns point drifting on.
   PairCoherence(const Pointshell& shell, double voxelSizeM, std::uint8_t forceLayer, std::uint8_t maxValue,

@@ -4,12 +4,12 @@
 #include "haptics/coherence/pair_coherence.h"
 
 #include <memory>
-#include <thread>
 
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 #include "haptics/runtime/frame_helper.h"
+#include "support/helper_thread.h"
 #include "tests/bench/seated_ball_model.h"
 
 namespace voxhap {
@@ -20,7 +20,6 @@ namespace {
 constexpr double kVoxelM = 0.7e-3;
 
 TEST(PairCoherence, AHelperFindsTheSameContactsAndQueuesAsOneThread) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
   const SimModel& model = seatedBallModel(kVoxelM);
   const PairModel& pair = model.pairs[0];
   const MovingObjectModel& ball = model.objects[0];
@@ -33,9 +32,8 @@ TEST(PairCoherence, AHelperFindsTheSameContactsAndQueuesAsOneThread) {
     return VoxelTransform::make(Pose{ball.body.comLocal - turn * ball.body.comLocal + shift, turn},
                                 socket.grid());
   };
-  // one pair's coherence per run, the second with a helper; on a thread of its own, since
-  // a helper keeps the thread that makes it off its CPU
-  std::thread([&] {
+  // one pair's coherence per run, the second with a helper
+  test::onAThreadOfItsOwn([&] {
     FrameHelper helper;
     PairCoherence alone(shell, socket.grid().voxelSizeM, pair.forceLayer(kDefaultForceLayer),
                         socket.encoding().maxValue(), true);
@@ -66,7 +64,8 @@ TEST(PairCoherence, AHelperFindsTheSameContactsAndQueuesAsOneThread) {
         runs[r]->endFrame(ball.maxTravelM);
       }
       ASSERT_EQ(dueCount[0], dueCount[1]) << "frame " << frame;
-      ASSERT_GE(dueCount[0], 1024u) << "frame " << frame << ": too few for the helper to take a share";
+      ASSERT_GE(dueCount[0], PairCoherence::kHelpedTests)
+          << "frame " << frame << ": too few for the helper to take a share";
       ASSERT_EQ(tested[0].contacts, tested[1].contacts) << "frame " << frame;
       EXPECT_EQ(tested[0].drifted, tested[1].drifted) << "frame " << frame;
       std::vector<bool> inHelpersHalf(shell.size(), false);  // due from the middle on
@@ -89,7 +88,7 @@ TEST(PairCoherence, AHelperFindsTheSameContactsAndQueuesAsOneThread) {
     }
     EXPECT_GT(contactsInHelpersHalf, 1000u);
     EXPECT_GT(framesWithGaps, 100);
-  }).join();
+  });
 }
 
 }  // namespace

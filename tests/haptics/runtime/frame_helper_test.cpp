@@ -7,20 +7,13 @@
 #include <sched.h>
 
 #include "haptics/core/error.h"
+#include "support/helper_thread.h"
 
 namespace voxhap {
 namespace {
 
-/// Runs `body` on a thread of its own (a helper keeps the thread that makes it off its CPU:
-/// the test's main thread keeps all of them), skipping where there is no spare core.
-template <typename Body>
-void onAThreadOfItsOwn(Body body) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
-  std::thread(body).join();
-}
-
 TEST(FrameHelper, RunsEachJobOnItsOwnCpuWhileTheMakerStaysOffIt) {
-  onAThreadOfItsOwn([] {
+  test::onAThreadOfItsOwn([] {
     FrameHelper helper;
     int jobCpu = -1;
     auto job = [&] { jobCpu = sched_getcpu(); };
@@ -33,7 +26,7 @@ TEST(FrameHelper, RunsEachJobOnItsOwnCpuWhileTheMakerStaysOffIt) {
 }
 
 TEST(FrameHelper, GivesTheMakerItsCpusBackWhenDestroyedOnIt) {
-  onAThreadOfItsOwn([] {
+  test::onAThreadOfItsOwn([] {
     cpu_set_t before;
     ASSERT_EQ(sched_getaffinity(0, sizeof before, &before), 0);
     for (int helper = 0; helper < 2; ++helper) {  // a second one finds a spare core again
@@ -49,7 +42,7 @@ TEST(FrameHelper, GivesTheMakerItsCpusBackWhenDestroyedOnIt) {
 }
 
 TEST(FrameHelper, FinishReturnsOnlyOnceTheJobHasReturned) {
-  onAThreadOfItsOwn([] {
+  test::onAThreadOfItsOwn([] {
     FrameHelper helper;
     std::uint64_t sum = 0;  // plain: finish() must order the helper's writes before our reads
     for (std::uint64_t i = 1; i <= 20000; ++i) {
@@ -62,7 +55,7 @@ TEST(FrameHelper, FinishReturnsOnlyOnceTheJobHasReturned) {
 }
 
 TEST(FrameHelper, WakesForAJobAfterSleeping) {
-  onAThreadOfItsOwn([] {
+  test::onAThreadOfItsOwn([] {
     FrameHelper helper;
     for (int round = 0; round < 2; ++round) {
       std::this_thread::sleep_for(2 * FrameHelper::kIdleBeforeSleep);
@@ -76,7 +69,7 @@ TEST(FrameHelper, WakesForAJobAfterSleeping) {
 }
 
 TEST(FrameHelper, RefusesWhereTheMakerMayRunOnOneCpuOnly) {
-  onAThreadOfItsOwn([] {
+  test::onAThreadOfItsOwn([] {
     cpu_set_t one;
     CPU_ZERO(&one);
     CPU_SET(static_cast<std::size_t>(sched_getcpu()), &one);

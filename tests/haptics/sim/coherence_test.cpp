@@ -2,13 +2,13 @@
 // force, which tests every point every frame.
 #include <cstring>
 #include <random>
-#include <thread>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "haptics/device/scripted_device.h"
 #include "support/contact_scenes.h"
+#include "support/helper_thread.h"
 
 namespace voxhap {
 namespace {
@@ -313,7 +313,6 @@ TEST(Coherence, SameInputsGiveTheSameBitsWithAFixedCapacity) {
 // A frame helper tests the last half of a frame's due points on a thread of its own: the
 // frames give the same bits as the haptic thread alone, and the queues end the same.
 TEST(Coherence, AFrameHelperGivesTheSameBitsAsOneThread) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
   const SimModel model = coupledModel(sphereOverPlate(), 3000.0);
   struct Run {
     std::vector<RigidBodyState> bodies;
@@ -322,9 +321,8 @@ TEST(Coherence, AFrameHelperGivesTheSameBitsAsOneThread) {
     int helpedFrames = 0;  // frames with enough due points for the helper to take a share
   };
   Run runs[2];
-  for (int helped = 0; helped < 2; ++helped) {
-    // on a thread of its own: a helper keeps the thread that makes it off its CPU
-    std::thread([&] {
+  test::onAThreadOfItsOwn([&] {
+    for (int helped = 0; helped < 2; ++helped) {
       Run& run = runs[helped];
       ScriptedDevice device(randomMotion(7, 0.05, 1.0));
       HapticDevice* devices[] = {&device};
@@ -334,20 +332,20 @@ TEST(Coherence, AFrameHelperGivesTheSameBitsAsOneThread) {
         sim.stepWithDevices(devices);
         run.bodies.push_back(sim.state.bodies[0]);
         run.contacts.push_back(sim.object(0).contacts);
-        run.helpedFrames += sim.outputs.coherence.tested >= 1024 ? 1 : 0;
+        run.helpedFrames += sim.outputs.coherence.tested >= PairCoherence::kHelpedTests ? 1 : 0;
       }
       const PointQueues& queues = sim.workspace.coherence.front().queues();
       for (int q = 0; q < queues.queueCount(); ++q) run.queueCounts.push_back(queues.count(q));
-    }).join();
-  }
-  EXPECT_GT(runs[1].helpedFrames, 100);
-  ASSERT_EQ(runs[0].bodies.size(), runs[1].bodies.size());
-  for (std::size_t frame = 0; frame < runs[0].bodies.size(); ++frame) {
-    ASSERT_EQ(std::memcmp(&runs[0].bodies[frame], &runs[1].bodies[frame], sizeof(RigidBodyState)), 0)
-        << "frame " << frame;
-  }
-  EXPECT_EQ(runs[0].contacts, runs[1].contacts);
-  EXPECT_EQ(runs[0].queueCounts, runs[1].queueCounts);
+    }
+    EXPECT_GT(runs[1].helpedFrames, 100);
+    ASSERT_EQ(runs[0].bodies.size(), runs[1].bodies.size());
+    for (std::size_t frame = 0; frame < runs[0].bodies.size(); ++frame) {
+      ASSERT_EQ(std::memcmp(&runs[0].bodies[frame], &runs[1].bodies[frame], sizeof(RigidBodyState)), 0)
+          << "frame " << frame;
+    }
+    EXPECT_EQ(runs[0].contacts, runs[1].contacts);
+    EXPECT_EQ(runs[0].queueCounts, runs[1].queueCounts);
+  });
 }
 
 }  // namespace

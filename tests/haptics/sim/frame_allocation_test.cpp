@@ -2,7 +2,6 @@
 // no heap allocation on the thread that steps (support/allocation_counter.h).
 #include <memory>
 #include <optional>
-#include <thread>
 
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
@@ -10,6 +9,7 @@
 #include "haptics/scene/builtin/builtin_scenes.h"
 #include "support/allocation_counter.h"
 #include "support/contact_scenes.h"
+#include "support/helper_thread.h"
 
 namespace voxhap {
 namespace {
@@ -88,7 +88,8 @@ void expectTheTurnedBallAllocatesNothing(bool helped) {
   }
   EXPECT_EQ(allocations.count(), 0u);
   EXPECT_GT(contactFrames, 250u) << "the frames tested little contact";
-  EXPECT_GT(sim.outputs.coherence.tested, 1024u) << "too few tests a frame for the helper to take a share";
+  EXPECT_GT(sim.outputs.coherence.tested, PairCoherence::kHelpedTests)
+      << "too few tests a frame for the helper to take a share";
   if (helped) {
     std::uint64_t helperCount = 0;
     auto read = [&] { helperCount = helperAllocations->count(); };
@@ -103,9 +104,7 @@ TEST(FrameAllocation, TurningTheSeatedBallWithItsCapacityMeasuredOnlineAllocates
 }
 
 TEST(FrameAllocation, TurningItWithAFrameHelperAllocatesNothingOnEitherThread) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
-  // on a thread of its own: a helper keeps the thread that makes it off its CPU
-  std::thread([] { expectTheTurnedBallAllocatesNothing(true); }).join();
+  test::onAThreadOfItsOwn([] { expectTheTurnedBallAllocatesNothing(true); });
 }
 
 }  // namespace
