@@ -22,7 +22,7 @@ packages=(
 )
 
 # the tests of code that runs on more than one thread, for the tsan preset
-tsan_tests='^(HapticLoop|ControllerLink|ControllerCommand|FrontendServer|UdpRelay|RelayCommand|PeerSession|PeerCommand|JitterBuffer|FrameCodec|SpscQueue|LatestValue|TripleBuffer|SpaceMouseDevice|UsbHotplug|FrameClock|Realtime|FrameHelper|VoxelPager|Coherence\.AFrameHelper|PairCoherence\.AHelper|BenchCommand\.Latency)|^ProtocolPythonClient$'
+tsan_tests='^(HapticLoop|ControllerLink|ControllerCommand|FrontendServer|UdpRelay|RelayCommand|PeerSession|PeerCommand|JitterBuffer|FrameCodec|SpscQueue|LatestValue|TripleBuffer|SpaceMouseDevice|UsbHotplug|FrameClock|Realtime|FrameHelper|VoxelPager|Coherence\.AFrameHelper|PairCoherence\.AHelper|TangentPlaneForce\.ManyContacts|BenchCommand\.Latency)|^ProtocolPythonClient$'
 
 say() { printf 'setup: %s\n' "$*" >&2; }
 

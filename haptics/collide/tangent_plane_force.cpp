@@ -6,14 +6,42 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "haptics/collide/surface_distance.h"
+#include "haptics/runtime/frame_helper.h"
 
 namespace voxhap {
 namespace {
 
+/// What a run of contacts adds to a pair's wrench, voxmap frame, before the stiff-contact
+/// scaling: in contact [0] and damped before contact [1], each capped on its own at the end.
+struct WrenchSums {
+  glm::dvec3 force[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+  glm::dvec3 torque[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+  std::uint32_t acting[2] = {0, 0};
+  std::uint32_t contactPoints = 0;
+  double maxDepthM = 0.0;
+  std::uint32_t missingVoxels = 0;
+  glm::ivec3 firstMissingVoxel{0};
+  std::uint32_t depthRows = 0;
+
+  /// The sums of the run that follows this one.
+  void add(const WrenchSums& next) noexcept {
+    for (int kind = 0; kind < 2; ++kind) {
+      force[kind] += next.force[kind];
+      torque[kind] += next.torque[kind];
+      acting[kind] += next.acting[kind];
+    }
+    contactPoints += next.contactPoints;
+    maxDepthM = std::max(maxDepthM, next.maxDepthM);
+    if (missingVoxels == 0) firstMissingVoxel = next.firstMissingVoxel;
+    missingVoxels += next.missingVoxels;
+    depthRows += next.depthRows;
+  }
+};
+
 /// Unit direction, voxmap frame, in which the field at `shift` falls around `ijk`
 /// (far counts as one more than the largest value); zero where it is flat. A neighbour
 /// paged out (paged voxmap) counts as the centre and is noted in `out`.
-glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift, PairWrench& out) {
+glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8_t shift, WrenchSums& out) {
   const VoxelEncoding& e = voxmap.encoding();
   const std::array<VoxelWord, 7> words = voxmap.wordsAround(ijk);
   std::array<int, 7> values;  // −1: paged out
@@ -46,7 +74,7 @@ glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8
 /// the side of a part resting on a plate would push sideways along its own normal). An
 /// edge (edge points): between the two.
 glm::dvec3 pushDirectionOf(const Voxmap& voxmap, const PointContact& contact, PointFeature feature,
-                           bool aware, std::uint8_t fieldShift, const glm::dvec3& n, PairWrench& out) {
+                           bool aware, std::uint8_t fieldShift, const glm::dvec3& n, WrenchSums& out) {
   if (feature == PointFeature::Surface && aware) return n;
   glm::dvec3 g = fallDirection(voxmap, contact.ijkVoxel, fieldShift, out);
   if (g == glm::dvec3(0.0)) g = n;
@@ -56,45 +84,65 @@ glm::dvec3 pushDirectionOf(const Voxmap& voxmap, const PointContact& contact, Po
   return length > 1e-6 ? between / length : n;
 }
 
-}  // namespace
+/// The pair's motion as every contact of a frame reads it.
+struct ContactFrame {
+  Pose voxmapToWorld;
+  Pose shellToVoxmap;
+  glm::dmat3 shellToVoxmapRotation{1.0};
+  glm::dvec3 shellComInVoxmap{0.0};
+  glm::dvec3 shellComWorld{0.0};
+  glm::dvec3 voxmapComWorld{0.0};
+  /// the velocity of the shell relative to the voxmap object at a point p of the voxmap
+  /// frame: linear + angular × p
+  glm::dvec3 linear{0.0};
+  glm::dvec3 angular{0.0};
+};
 
-PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, const ContactParams& params,
-                              const BodyMotion& shellMotion, const BodyMotion& voxmapMotion,
-                              std::span<const PointContact> contacts, const DepthRowSink* sink) noexcept {
-  PairWrench out;
-  if (contacts.empty()) return out;
-  const Pose shellToVoxmap = compose(inverse(voxmapMotion.poseWorld), shellMotion.poseWorld);
-  const glm::dmat3 shellToVoxmapRotation = glm::mat3_cast(shellToVoxmap.orientation);
-  const glm::dvec3 shellComInVoxmap = apply(shellToVoxmap, shellMotion.comLocal);
-  const glm::dvec3 shellComWorld = apply(shellMotion.poseWorld, shellMotion.comLocal);
-  const glm::dvec3 voxmapComWorld = apply(voxmapMotion.poseWorld, voxmapMotion.comLocal);
-  // velocity of the shell relative to the voxmap object at a point p of the voxmap frame:
-  // linear + angular × p, both constant over the frame's contacts
+ContactFrame contactFrame(const BodyMotion& shellMotion, const BodyMotion& voxmapMotion) noexcept {
+  ContactFrame f;
+  f.voxmapToWorld = voxmapMotion.poseWorld;
+  f.shellToVoxmap = compose(inverse(voxmapMotion.poseWorld), shellMotion.poseWorld);
+  f.shellToVoxmapRotation = glm::mat3_cast(f.shellToVoxmap.orientation);
+  f.shellComInVoxmap = apply(f.shellToVoxmap, shellMotion.comLocal);
+  f.shellComWorld = apply(shellMotion.poseWorld, shellMotion.comLocal);
+  f.voxmapComWorld = apply(voxmapMotion.poseWorld, voxmapMotion.comLocal);
   const Pose worldToVoxmap = inverse(voxmapMotion.poseWorld);
-  const glm::dvec3 angular =
+  f.angular =
       applyRotation(worldToVoxmap, shellMotion.angularVelocityWorld - voxmapMotion.angularVelocityWorld);
   const glm::dvec3 linearWorld =
-      shellMotion.linearVelocityWorld - glm::cross(shellMotion.angularVelocityWorld, shellComWorld) -
-      voxmapMotion.linearVelocityWorld + glm::cross(voxmapMotion.angularVelocityWorld, voxmapComWorld);
+      shellMotion.linearVelocityWorld - glm::cross(shellMotion.angularVelocityWorld, f.shellComWorld) -
+      voxmapMotion.linearVelocityWorld + glm::cross(voxmapMotion.angularVelocityWorld, f.voxmapComWorld);
   // the velocity field v(x) = linearWorld + ω_rel × x in world, taken to the voxmap frame:
   // x = R p + t gives v = R⁻¹(linearWorld + ω_rel × t) + (R⁻¹ω_rel) × p
-  const glm::dvec3 linear = applyRotation(
-      worldToVoxmap,
-      linearWorld + glm::cross(shellMotion.angularVelocityWorld - voxmapMotion.angularVelocityWorld,
-                               voxmapMotion.poseWorld.position));
+  f.linear = applyRotation(worldToVoxmap, linearWorld + glm::cross(shellMotion.angularVelocityWorld -
+                                                                       voxmapMotion.angularVelocityWorld,
+                                                                   voxmapMotion.poseWorld.position));
+  return f;
+}
+
+/// The sums of `contacts`, and their depth rows into `sink` from its first row on.
+WrenchSums sumContacts(const Pointshell& shell, const Voxmap& voxmap, const ContactParams& params,
+                       const ContactFrame& frame, std::span<const PointContact> contacts,
+                       const DepthRowSink* sink) noexcept {
+  WrenchSums out;
   const VoxelGrid& grid = voxmap.grid();
   const double s = grid.voxelSizeM;
   const auto shifts = fieldShiftsByFeature(params.geometricalAwareness, voxmap.encoding());
   const bool planes = params.surfaceContactM > 0.0 && voxmap.hasSurfacePlanes();
-
-  // unscaled sums (voxmap frame), in contact [0] and damped before contact [1]; each is
-  // capped on its own at the end
+  // the frame and the sums in locals: the rows' writes could alias memory of the caller's,
+  // which the compiler would then reload or store again at every contact
+  const glm::dmat3 shellToVoxmapRotation = frame.shellToVoxmapRotation;
+  const glm::dvec3 shellToVoxmapShift = frame.shellToVoxmap.position;
+  const glm::dvec3 shellComInVoxmap = frame.shellComInVoxmap;
+  const glm::dvec3 linear = frame.linear;
+  const glm::dvec3 angular = frame.angular;
+  const Pose voxmapToWorld = frame.voxmapToWorld;
   glm::dvec3 force[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
   glm::dvec3 torque[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
   std::uint32_t acting[2] = {0, 0};
   for (const PointContact& c : contacts) {
     const glm::dvec3 p =
-        shellToVoxmapRotation * glm::dvec3(shell.positionsLocal[c.point]) + shellToVoxmap.position;
+        shellToVoxmapRotation * glm::dvec3(shell.positionsLocal[c.point]) + shellToVoxmapShift;
     const bool beforeContact = c.value > params.forceLayer;
     const SurfacePlane* plane = planes ? voxmap.surfacePlane(c.ijkVoxel) : nullptr;
     // no plane: deep inside (the voxel's tangent plane stands in), or too far out to push
@@ -126,8 +174,8 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     out.contactPoints += beforeContact ? 0 : 1;
     if (sink && !beforeContact && depth > sink->minDepthM && out.depthRows < sink->rows.size()) {
       DepthRow& row = sink->rows[out.depthRows++];
-      row.pointWorld = apply(voxmapMotion.poseWorld, p);
-      row.intoVoxmapWorld = applyRotation(voxmapMotion.poseWorld, pushDirection);
+      row.pointWorld = apply(voxmapToWorld, p);
+      row.intoVoxmapWorld = applyRotation(voxmapToWorld, pushDirection);
       row.depthM = depth;
       row.floorM = sink->minDepthM;
       row.surfacePlane = plane != nullptr;
@@ -144,19 +192,67 @@ PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, con
     force[kind] += f;
     torque[kind] += glm::cross(p - shellComInVoxmap, f);
   }
+  for (int kind = 0; kind < 2; ++kind) {
+    out.force[kind] = force[kind];
+    out.torque[kind] = torque[kind];
+    out.acting[kind] = acting[kind];
+  }
+  return out;
+}
+
+}  // namespace
+
+PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, const ContactParams& params,
+                              const BodyMotion& shellMotion, const BodyMotion& voxmapMotion,
+                              std::span<const PointContact> contacts, const DepthRowSink* sink,
+                              FrameHelper* helper) noexcept {
+  PairWrench out;
+  if (contacts.empty()) return out;
+  const ContactFrame frame = contactFrame(shellMotion, voxmapMotion);
+  const std::size_t n = contacts.size();
+  const std::size_t half = n >= kHalvedContacts ? n / 2 : n;
+  // the second half's rows from row `half` on, moved down to follow the first's
+  DepthRowSink secondSink;
+  if (sink) secondSink = {sink->rows.subspan(std::min(half, sink->rows.size())), sink->minDepthM};
+  WrenchSums second;
+  auto sumSecond = [&] {
+    second = sumContacts(shell, voxmap, params, frame, contacts.subspan(half), sink ? &secondSink : nullptr);
+  };
+  // a paged voxmap is read by the haptic thread alone
+  const bool helped = half < n && helper && !voxmap.isPaged();
+  if (helped) helper->run(sumSecond);
+  WrenchSums sums = sumContacts(shell, voxmap, params, frame, contacts.first(half), sink);
+  if (half < n) {
+    if (helped) {
+      helper->finish();
+    } else {
+      sumSecond();
+    }
+    if (sink && second.depthRows > 0) {
+      std::copy_n(secondSink.rows.begin(), second.depthRows, sink->rows.begin() + sums.depthRows);
+    }
+    sums.add(second);
+  }
+
   glm::dvec3 totalForce(0.0);
   glm::dvec3 totalTorque(0.0);
   for (int kind = 0; kind < 2; ++kind) {
-    const double scale = acting[kind] > kStiffContacts ? double(kStiffContacts) / double(acting[kind]) : 1.0;
-    totalForce += force[kind] * scale;
-    totalTorque += torque[kind] * scale;
+    const std::uint32_t acting = sums.acting[kind];
+    const double scale = acting > kStiffContacts ? double(kStiffContacts) / double(acting) : 1.0;
+    totalForce += sums.force[kind] * scale;
+    totalTorque += sums.torque[kind] * scale;
   }
-  out.pushingPoints = acting[0] + acting[1];
+  out.contactPoints = sums.contactPoints;
+  out.pushingPoints = sums.acting[0] + sums.acting[1];
+  out.maxDepthM = sums.maxDepthM;
+  out.missingVoxels = sums.missingVoxels;
+  out.firstMissingVoxel = sums.firstMissingVoxel;
+  out.depthRows = sums.depthRows;
   out.forceOnShellWorld = applyRotation(voxmapMotion.poseWorld, totalForce);
   out.torqueOnShellWorld = applyRotation(voxmapMotion.poseWorld, totalTorque);
   out.forceOnVoxmapWorld = -out.forceOnShellWorld;
   out.torqueOnVoxmapWorld =
-      -out.torqueOnShellWorld - glm::cross(shellComWorld - voxmapComWorld, out.forceOnShellWorld);
+      -out.torqueOnShellWorld - glm::cross(frame.shellComWorld - frame.voxmapComWorld, out.forceOnShellWorld);
   return out;
 }
 

@@ -37,8 +37,11 @@
 /// When more than kStiffContacts points push, k and b are scaled by kStiffContacts /
 /// count, so that the total stiffness stays bounded however many points touch. Force and
 /// torque are summed in the voxmap frame, turned to world, and applied equal and opposite
-/// to the two objects.
+/// to the two objects. From kHalvedContacts contacts on they are summed in two halves,
+/// the first's sums then the second's added, whether a frame helper sums the second half
+/// meanwhile or not: the same bits whatever the thread count.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -48,6 +51,11 @@
 #include "haptics/collide/point_sampler.h"
 
 namespace voxhap {
+
+class FrameHelper;
+
+/// A pair's contacts are summed in two halves from this many on (tangentPlaneWrench).
+inline constexpr std::size_t kHalvedContacts = 1024;
 
 /// Pose and velocity of one object of a pair, world frame.
 struct BodyMotion {
@@ -97,10 +105,13 @@ struct PairWrench {
 /// Sums the tangent-plane forces of `contacts` (from samplePoints with the same
 /// `params`) of `shell` (its object moving as `shellMotion`) in `voxmap` (its object
 /// moving as `voxmapMotion`). With a `sink`, the contacts deep enough to limit the step
-/// are written to it too (their object indices and limit left to the caller).
+/// are written to it too (their object indices and limit left to the caller), in contact
+/// order; the second half's rows are written from the sink's row contacts.size() / 2 on
+/// and moved down, so a sink with fewer rows than contacts may keep fewer of them. With a
+/// `helper` (frame_helper.h) and an unpaged voxmap, the helper sums the second half.
 PairWrench tangentPlaneWrench(const Pointshell& shell, const Voxmap& voxmap, const ContactParams& params,
                               const BodyMotion& shellMotion, const BodyMotion& voxmapMotion,
-                              std::span<const PointContact> contacts,
-                              const DepthRowSink* sink = nullptr) noexcept;
+                              std::span<const PointContact> contacts, const DepthRowSink* sink = nullptr,
+                              FrameHelper* helper = nullptr) noexcept;
 
 }  // namespace voxhap

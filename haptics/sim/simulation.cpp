@@ -252,8 +252,9 @@ FrameStatus step(const SimModel& model, SimState& state, SimWorkspace& ws, const
                             limitM - ws.pairFrames[p].relativeTravelBoundM};
     const BodyMotion shellMotion = motionOf(model, state, pair.shellObject);
     const std::span<const PointContact> contacts(ws.contacts.data(), found);
-    const PairWrench w = tangentPlaneWrench(shellObject.shell, model.voxmapOf(pair), params, shellMotion,
-                                            motionOf(model, state, pair.voxmapObject), contacts, &sink);
+    const PairWrench w =
+        tangentPlaneWrench(shellObject.shell, model.voxmapOf(pair), params, shellMotion,
+                           motionOf(model, state, pair.voxmapObject), contacts, &sink, ws.helper.get());
     for (std::size_t r = rowCount; r < rowCount + w.depthRows; ++r) {
       DepthRow& row = ws.depthScratch.rows[r];
       row.limitM = limitM;

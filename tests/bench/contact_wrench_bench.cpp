@@ -4,7 +4,8 @@
 // field's fall direction), the contacts of one pass of point tests at a pose turned about
 // the ball's centre, summed by tangentPlaneWrench. Each iteration takes the next of a few
 // poses, sampled beforehand, so that the voxmap reads are not all cache-warm. Counters:
-// contacts per second, how many of them push.
+// contacts per second, how many of them push. The second argument 1: a frame helper (a
+// second thread, frame_helper.h) sums half of them.
 #include <map>
 #include <memory>
 
@@ -12,6 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "haptics/collide/tangent_plane_force.h"
+#include "haptics/runtime/frame_helper.h"
 #include "tests/bench/seated_ball_model.h"
 
 namespace voxhap {
@@ -59,13 +61,15 @@ void contactWrenches(benchmark::State& state) {
   const PairModel& pair = b.model.pairs[0];
   const Pointshell& shell = b.model.objects[0].shell;
   const Voxmap& socket = b.model.voxmapOf(pair);
+  const auto helper = state.range(1) ? std::make_unique<FrameHelper>() : nullptr;
   std::size_t next = 0;
   double contacts = 0.0;
   double pushing = 0.0;
   for (auto _ : state) {
     const SampledPose& p = b.poses[next];
     next = (next + 1) % b.poses.size();
-    const PairWrench w = tangentPlaneWrench(shell, socket, pair.params, p.ball, BodyMotion{}, p.contacts);
+    const PairWrench w = tangentPlaneWrench(shell, socket, pair.params, p.ball, BodyMotion{}, p.contacts,
+                                            nullptr, helper.get());
     benchmark::DoNotOptimize(w);
     contacts += static_cast<double>(p.contacts.size());
     pushing += w.pushingPoints;
@@ -74,8 +78,8 @@ void contactWrenches(benchmark::State& state) {
   state.counters["pushing_per_pass"] = pushing / static_cast<double>(state.iterations());
   state.counters["contacts_per_s"] = benchmark::Counter(contacts, benchmark::Counter::kIsRate);
 }
-// voxel size in units of 10 µm: 0.35 mm and 0.15 mm
-BENCHMARK(contactWrenches)->Arg(35)->Arg(15)->Unit(benchmark::kMillisecond);
+// voxel size in units of 10 µm (0.35 mm and 0.15 mm), and without or with a helper
+BENCHMARK(contactWrenches)->ArgsProduct({{35, 15}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace voxhap

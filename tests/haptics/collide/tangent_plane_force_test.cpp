@@ -1,7 +1,8 @@
 // The pair wrench of tangentPlaneWrench when both objects of the pair move and turn: a
 // pure equal-and-opposite force pair acting at each contact point (angular momentum
 // about a fixed point conserved), and damping from the true relative velocity of the two
-// bodies at that point.
+// bodies at that point; and the sums of a frame with many contacts, in two halves, alike
+// with and without a frame helper.
 #include "haptics/collide/tangent_plane_force.h"
 
 #include <cmath>
@@ -11,7 +12,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "haptics/runtime/frame_helper.h"
 #include "support/contact_scenes.h"
+#include "support/helper_thread.h"
 
 namespace voxhap {
 namespace {
@@ -145,6 +148,77 @@ TEST(TangentPlaneForce, DampingUsesTheRelativeVelocityOfBothMovingAndTurningBodi
   }
   EXPECT_EQ(checked, static_cast<int>(pair.contacts.size()))
       << "every contact approaches one way or the other";
+}
+
+bool sameRow(const DepthRow& a, const DepthRow& b) {
+  return a.pointWorld == b.pointWorld && a.intoVoxmapWorld == b.intoVoxmapWorld && a.depthM == b.depthM &&
+         a.floorM == b.floorM && a.surfacePlane == b.surfacePlane;
+}
+
+// A frame of kHalvedContacts contacts or more (here the pair's, repeated) is summed in two
+// halves: every contact's force counted once, scaled as one frame's; the depth rows in
+// contact order; and the same bits when a frame helper sums the second half.
+TEST(TangentPlaneForce, ManyContactsAreSummedInTwoHalvesAlikeWithAndWithoutAHelper) {
+  const MovingPair pair;
+  std::vector<PointContact> many;
+  // each contact, and a copy of it one layer beyond the force layer, which gives no row (nor,
+  // without damping, any push)
+  while (many.size() < 3 * kHalvedContacts + 1) {
+    for (PointContact c : pair.contacts) {
+      many.push_back(c);
+      c.value = static_cast<std::uint8_t>(pair.params.forceLayer + 1);
+      many.push_back(c);
+    }
+  }
+  const DepthRowSink probe{{}, 0.0};  // the rows of the contacts that push
+  // each contact alone: its force unscaled (one push), its row
+  glm::dvec3 forceSumN(0.0);
+  std::uint32_t pushing = 0;
+  std::vector<DepthRow> expectedRows;
+  for (const PointContact& c : many) {
+    DepthRow row;
+    const DepthRowSink one{std::span(&row, 1), probe.minDepthM};
+    const PairWrench w = tangentPlaneWrench(pair.shell, pair.voxmap, pair.params, pair.shellMotion,
+                                            pair.voxmapMotion, std::span(&c, 1), &one);
+    forceSumN += w.forceOnShellWorld;
+    pushing += w.pushingPoints;
+    if (w.depthRows == 1) expectedRows.push_back(row);
+  }
+  ASSERT_GT(pushing, static_cast<std::uint32_t>(kStiffContacts));
+  ASSERT_GT(expectedRows.size(), kHalvedContacts / 2);
+  ASSERT_EQ(2 * expectedRows.size(), many.size()) << "a row from every contact in the force layer";
+
+  const auto sum = [&](FrameHelper* helper, std::vector<DepthRow>& rows) {
+    rows.assign(many.size(), DepthRow{});
+    const DepthRowSink sink{rows, probe.minDepthM};
+    const PairWrench w = tangentPlaneWrench(pair.shell, pair.voxmap, pair.params, pair.shellMotion,
+                                            pair.voxmapMotion, many, &sink, helper);
+    rows.resize(w.depthRows);
+    return w;
+  };
+  std::vector<DepthRow> rowsAlone;
+  const PairWrench alone = sum(nullptr, rowsAlone);
+  EXPECT_EQ(alone.pushingPoints, pushing);
+  const double scale = double(kStiffContacts) / double(pushing);
+  EXPECT_NEAR(glm::length(alone.forceOnShellWorld - scale * forceSumN), 0.0,
+              1e-12 * scale * glm::length(forceSumN));
+  ASSERT_EQ(rowsAlone.size(), expectedRows.size());
+  for (std::size_t r = 0; r < rowsAlone.size(); ++r) EXPECT_TRUE(sameRow(rowsAlone[r], expectedRows[r])) << r;
+
+  test::onAThreadOfItsOwn([&] {
+    FrameHelper helper;
+    std::vector<DepthRow> rowsHelped;
+    const PairWrench helped = sum(&helper, rowsHelped);
+    EXPECT_EQ(helped.forceOnShellWorld, alone.forceOnShellWorld);
+    EXPECT_EQ(helped.torqueOnShellWorld, alone.torqueOnShellWorld);
+    EXPECT_EQ(helped.torqueOnVoxmapWorld, alone.torqueOnVoxmapWorld);
+    EXPECT_EQ(helped.contactPoints, alone.contactPoints);
+    EXPECT_EQ(helped.pushingPoints, alone.pushingPoints);
+    EXPECT_EQ(helped.maxDepthM, alone.maxDepthM);
+    ASSERT_EQ(rowsHelped.size(), rowsAlone.size());
+    for (std::size_t r = 0; r < rowsHelped.size(); ++r)
+      EXPECT_TRUE(sameRow(rowsHelped[r], rowsAlone[r])) << r;
+  });
 }
 
 }  // namespace
