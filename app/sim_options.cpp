@@ -90,8 +90,9 @@ void addSimOptions(CLI::App& command, SimOptions& o, std::initializer_list<SimOp
         break;
       case SimOption::FrameHelper:
         command.add_flag("--frame-helper", o.frameHelper,
-                         "a second thread, pinned to a spare core, tests half the due points of large "
-                         "frames (the same results; it keeps that core busy while frames run)");
+                         "a second thread, pinned to a spare core, tests half the due points and sums "
+                         "half the contact forces of large frames (the same results; it keeps that core "
+                         "busy while frames run)");
         break;
       case SimOption::DeviceProfile:
         addParsedOption(command, "--device-profile", "NAME",

@@ -38,7 +38,7 @@ struct SimOptions {
   bool paperContact = false;              ///< --paper-contact: the paper's voxel planes, not surface planes
   bool bruteForce = false;                ///< --brute-force: every point every frame
   bool noDrifting = false;                ///< --no-drifting: no point drifting
-  bool frameHelper = false;               ///< --frame-helper: a second thread tests half the points
+  bool frameHelper = false;               ///< --frame-helper: a second thread shares large frames
   std::optional<std::uint64_t> capacity;  ///< --capacity: point tests per frame (≥ 1)
   std::optional<std::uint64_t> voxelMemoryBytes;  ///< --voxel-memory: for the static voxels, bytes
   std::optional<DeviceLimits> deviceLimits;       ///< --device-profile NAME: that profile's limits

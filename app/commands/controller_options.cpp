@@ -6,10 +6,10 @@
 namespace voxhap::cli {
 
 void addControllerRunOptions(CLI::App& command, ControllerRunArgs& args) {
-  addSimOptions(
-      command, args.sim,
-      {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset, SimOption::ForceLayerOf,
-       SimOption::PaperContact, SimOption::Capacity, SimOption::VoxelMemory, SimOption::DeviceProfile});
+  addSimOptions(command, args.sim,
+                {SimOption::VoxelSize, SimOption::PointSpacing, SimOption::PointOffset,
+                 SimOption::ForceLayerOf, SimOption::PaperContact, SimOption::Capacity,
+                 SimOption::VoxelMemory, SimOption::DeviceProfile, SimOption::FrameHelper});
   command.get_option("--voxel-size")
       ->description("voxel size of the static scene (default 2.5mm, as the demo)");
   command.get_option("--point-spacing")->description("point spacing of the moving objects (default 1mm)");
@@ -25,6 +25,7 @@ void applyControllerRunArgs(const ControllerRunArgs& args, Console& console, Con
   options.model = sceneModelOptions(args.sim, console, kExtractionVoxelSizeM, kExtractionPointSpacingM);
   options.durationS = args.durationS;
   options.realtime = !args.noRealtime;
+  options.frameHelper = args.sim.frameHelper;
   options.json = args.json;
 }
 

@@ -21,7 +21,8 @@ struct ControllerRunArgs {
   bool json = false;
 };
 
-/// Adds the model's sizes, --duration, --no-realtime, the cache options and --json, in that order.
+/// Adds the model's sizes and --frame-helper, --duration, --no-realtime, the cache options and
+/// --json, in that order.
 void addControllerRunOptions(CLI::App& command, ControllerRunArgs& args);
 
 /// Fills `options`' model, duration, realtime and JSON from `args`.

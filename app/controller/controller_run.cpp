@@ -34,11 +34,13 @@ std::string why(const RealtimeOutcome& outcome) {
   return " (" + (outcome.error.empty() ? std::string("not asked: --no-realtime") : outcome.error) + ")";
 }
 
-std::string realtimeLine(const RealtimeStatus& status) {
+std::string realtimeLine(const HapticLoop& loop) {
+  const RealtimeStatus& status = loop.realtime();
   std::string line = status.fifo.ok
                          ? "haptic thread under SCHED_FIFO priority " + std::to_string(status.fifoPriority)
                          : "haptic thread without SCHED_FIFO" + why(status.fifo);
   line += status.memoryLock.ok ? ", memory locked" : ", memory not locked" + why(status.memoryLock);
+  if (loop.frameHelperCpu() >= 0) line += ", a frame helper on CPU " + std::to_string(loop.frameHelperCpu());
   if (!status.fifo.ok) line += "; periods may stretch when the machine is busy";
   return line;
 }
@@ -290,6 +292,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
 
   controller::HapticLoopOptions loopOptions;
   loopOptions.realtime = options.realtime;
+  loopOptions.frameHelper = options.frameHelper;
   // what a LoadScene asks for, with this controller's options for the rest
   const controller::SessionLoader loader = [&options, &console](const net::pb::LoadScene& request,
                                                                 const ProgressFn& progress) {
@@ -365,7 +368,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   });
 
   if (const controller::ControllerSession* session = service.session())
-    console.info(realtimeLine(session->loop->realtime()));
+    console.info(realtimeLine(*session->loop));
   if (peer) {
     const SimModel& model = service.session()->built->model;
     service.setPeerHooks(
@@ -408,31 +411,34 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   const PeriodSummary compute = session ? session->loop->computeStats().summary() : PeriodSummary{};
   const bool fifo = session && session->loop->realtime().fifo.ok;
   const bool locked = session && session->loop->realtime().memoryLock.ok;
+  const int helperCpu = session ? session->loop->frameHelperCpu() : -1;
   const std::string sceneName = session ? session->sceneName : std::string();
   const net::FrontendServerCounters& c = server->counters();
   console.info("stopped: " + stopReason);
   if (options.json) {
-    nlohmann::ordered_json j = {{"scene", sceneName},
-                                {"stopped_by", stopReason},
-                                {"wall_s", secondsSince(started)},
-                                {"frames", last.frame},
-                                {"simulated_s", last.timeS},
-                                {"sched_fifo", fifo},
-                                {"sched_fifo_given_up", last.fifoGivenUp},
-                                {"memory_locked", locked},
-                                {"period", summaryJson(period)},
-                                {"compute", summaryJson(compute)},
-                                {"resyncs", last.resyncs},
-                                {"skipped_periods", last.skippedPeriods},
-                                {"missed_deadlines", last.missedDeadlines},
-                                {"dropped_commands", service.droppedCommands()},
-                                {"connections", c.connections},
-                                {"refused_connections", c.refused},
-                                {"protocol_violations", c.violations},
-                                {"requests", c.requests},
-                                {"updates_sent", c.updatesSent},
-                                {"updates_skipped", c.updatesSkipped},
-                                {"updates_unchanged", c.updatesUnchanged}};
+    nlohmann::ordered_json j = {
+        {"scene", sceneName},
+        {"stopped_by", stopReason},
+        {"wall_s", secondsSince(started)},
+        {"frames", last.frame},
+        {"simulated_s", last.timeS},
+        {"sched_fifo", fifo},
+        {"sched_fifo_given_up", last.fifoGivenUp},
+        {"memory_locked", locked},
+        {"frame_helper_cpu", helperCpu >= 0 ? nlohmann::ordered_json(helperCpu) : nlohmann::ordered_json()},
+        {"period", summaryJson(period)},
+        {"compute", summaryJson(compute)},
+        {"resyncs", last.resyncs},
+        {"skipped_periods", last.skippedPeriods},
+        {"missed_deadlines", last.missedDeadlines},
+        {"dropped_commands", service.droppedCommands()},
+        {"connections", c.connections},
+        {"refused_connections", c.refused},
+        {"protocol_violations", c.violations},
+        {"requests", c.requests},
+        {"updates_sent", c.updatesSent},
+        {"updates_skipped", c.updatesSkipped},
+        {"updates_unchanged", c.updatesUnchanged}};
     if (peer) j["peer"] = peerJson(*peer, *link, session->built->model);
     out << j.dump(2) << "\n";
     return;
@@ -444,6 +450,7 @@ void runController(const ControllerOptions& options, Console& console, std::ostr
   printSummary(out, "compute", compute);
   out << "re-syncs         " << last.resyncs << " (" << last.skippedPeriods << " periods skipped)\n";
   if (fifo) out << "SCHED_FIFO       given up " << last.fifoGivenUp << " times, the frames overrunning\n";
+  if (helperCpu >= 0) out << "frame helper     on CPU " << helperCpu << "\n";
   out << "missed deadlines " << last.missedDeadlines << "\nclients          " << c.connections << " ("
       << c.violations << " closed for protocol violations, " << c.refused << " refused), " << c.requests
       << " requests\n";

@@ -43,6 +43,7 @@ struct ControllerOptions {
   std::string device;               ///< "script:FILE" grabs moving[0] at start; empty: none
   std::optional<double> durationS;  ///< stop after this much wall time
   bool realtime = true;             ///< try mlockall and SCHED_FIFO
+  bool frameHelper = false;         ///< HapticLoopOptions::frameHelper
   bool json = false;
   /// Called on the controller's thread once it listens, with the port (in-process use).
   std::function<void(std::uint16_t port)> onListening;

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <future>
 
+#include "haptics/core/error.h"
 #include "haptics/runtime/frame_clock.h"
+#include "haptics/runtime/frame_helper.h"
 
 namespace voxhap::controller {
 namespace {
@@ -58,11 +60,26 @@ void HapticLoop::start() {
   std::promise<void> ready;
   std::future<void> started = ready.get_future();
   thread_ = std::thread([this, &ready] {
+    if (options_.frameHelper) {
+      try {
+        workspace_.helper = std::make_shared<FrameHelper>();
+        helperCpu_ = workspace_.helper->cpu();
+      } catch (const Error&) {
+        ready.set_exception(std::current_exception());
+        return;
+      }
+    }
     if (options_.realtime) realtime_ = requestRealtime(options_.fifoPriority);
     ready.set_value();
     run();
+    workspace_.helper.reset();  // on this thread: its CPUs come back before it ends
   });
-  started.wait();
+  try {
+    started.get();
+  } catch (const Error&) {
+    thread_.join();
+    throw;
+  }
 }
 
 void HapticLoop::stop() {
@@ -194,6 +211,7 @@ void HapticLoop::publish(FrameStatus status, std::uint64_t frame) noexcept {
     o.handle = o.held ? handles_[i].poseWorld : o.pose;
     o.forceWorld = f.contactForceWorld;
     o.contacts = f.contacts;
+    o.tested = f.tested;
     o.contactSample = f.contactSample;
     o.travelShare = outputs_.coherence.travelScale;
     o.shared = sharing_[i] != Sharing::No;

@@ -70,6 +70,7 @@ struct ObjectSnapshot {
   bool held = false;
   glm::dvec3 forceWorld{0.0};  ///< contact force, N
   std::uint32_t contacts = 0;
+  std::uint32_t tested = 0;      ///< point tests of its pointshell this frame
   ContactSample contactSample;   ///< some of its contact points, world
   double travelShare = 1.0;      ///< MaxTravel over its upper bound
   bool shared = false;           ///< this peer integrates its own instance of it (type-2)
@@ -107,6 +108,12 @@ struct HapticLoopOptions {
   PeerId localPeer = kNoPeer;
   std::size_t remoteCapacity = 1024;  ///< RemoteUpdates queued, a power of two
   std::int64_t playoutDelayUs = 30'000;
+  /// A second thread, pinned to a spare core, that shares the point tests and contact
+  /// sums of large frames (haptics/runtime/frame_helper.h): the same results, a core kept
+  /// busy while frames run. Made on the haptic thread before it asks for SCHED_FIFO, so that
+  /// the helper, which spins between frames, runs under the normal policy and does not
+  /// starve whatever else runs on its core.
+  bool frameHelper = false;
 };
 
 class HapticLoop {
@@ -124,7 +131,8 @@ public:
   HapticLoop(const HapticLoop&) = delete;
   HapticLoop& operator=(const HapticLoop&) = delete;
 
-  /// Starts the haptic thread and waits until it has tried the real-time set-up.
+  /// Starts the haptic thread and waits until it has tried the real-time set-up. Throws
+  /// Error when a frame helper was asked for and cannot be had (no spare core).
   void start();
   /// Ends the haptic thread after its current frame and joins it. Devices still held are
   /// retired (takeRetired). Idempotent.
@@ -141,6 +149,8 @@ public:
   const FrameSnapshot& latest() noexcept;
   /// What the real-time set-up achieved (valid after start()).
   const RealtimeStatus& realtime() const noexcept { return realtime_; }
+  /// The frame helper's CPU, or −1 without one (valid after start()).
+  int frameHelperCpu() const noexcept { return helperCpu_; }
   const SimModel& model() const noexcept { return model_; }
   /// The whole-run statistics (valid after stop()).
   const PeriodStats& periodStats() const noexcept { return period_; }
@@ -198,6 +208,7 @@ private:
   std::uint64_t resyncs_ = 0;
   std::uint64_t skippedPeriods_ = 0;
   RealtimeStatus realtime_;
+  int helperCpu_ = -1;
   FifoHold fifoHold_;
   std::atomic<bool> stopRequested_{false};
   std::thread thread_;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <csignal>
 #include <fstream>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -503,6 +504,20 @@ TEST_F(ControllerCommand, AClientLoadsASceneWithProgressAndThenSimulatesIt) {
   EXPECT_EQ(update->frame_update().objects_size(), 1);
   child_->signal(SIGTERM);
   EXPECT_GT(finish().at("frames").get<std::uint64_t>(), 0u);
+}
+
+// --frame-helper: the controller says on which CPU its helper runs, on stderr and in its
+// summary, and turns the ball as without
+TEST_F(ControllerCommand, AFrameHelperIsNamedInTheSummary) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
+  start({"--device", "script:" + asset("scripts/ball-turn.txt"), "--frame-helper", "--duration", "1"});
+  const nlohmann::json summary = finish();
+  EXPECT_GT(summary.at("frames").get<std::uint64_t>(), 0u);
+  ASSERT_TRUE(summary.at("frame_helper_cpu").is_number()) << summary.dump();
+  const int cpu = summary.at("frame_helper_cpu").get<int>();
+  EXPECT_GE(cpu, 0);
+  EXPECT_NE(child_->err().find("a frame helper on CPU " + std::to_string(cpu)), std::string::npos)
+      << child_->err();
 }
 
 TEST_F(ControllerCommand, BeyondLoopbackItWantsAToken) {

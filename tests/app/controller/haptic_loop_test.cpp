@@ -7,12 +7,18 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <filesystem>
+#include <iterator>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <pthread.h>
 #include <sched.h>
 
+#include "haptics/coherence/pair_coherence.h"
+#include "haptics/core/error.h"
 #include "haptics/geometry/mesh_builder.h"
 #include "haptics/runtime/frame_clock.h"
 #include "support/contact_scenes.h"
@@ -259,6 +265,70 @@ TEST_F(HapticLoopTest, StopRetiresTheDevicesStillHeldAndKeepsItsStatistics) {
   EXPECT_GT(loop_->periodStats().count(), 200u);
   EXPECT_EQ(loop_->periodStats().count() + 1, loop_->computeStats().count());
   EXPECT_FALSE(loop_->realtime().fifo.ok);  // not asked for
+}
+
+/// Threads of this process now.
+std::size_t threadCount() {
+  return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator("/proc/self/task"),
+                                                std::filesystem::directory_iterator()));
+}
+
+// --frame-helper of the controller: the helper is made by the haptic thread on a CPU of
+// its own, shares the frames in which a finely pointed box (0.5 mm) comes down onto the
+// plate, and ends with the loop
+TEST_F(HapticLoopTest, AFrameHelperComesWithTheHapticThreadAndEndsWithIt) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
+  loop_->stop();
+  SceneModelOptions fine = test::ampleCapacityOptions();
+  fine.staticVoxelSizeM = 1e-3;
+  fine.pointSpacingM = 0.5e-3;
+  const SimModel model = buildSceneModel(scene_, {"box"}, fine);
+  const std::size_t before = threadCount();
+  HapticLoopOptions options;
+  options.realtime = false;
+  options.frameHelper = true;
+  HapticLoop helped(model, makeSimState(model), nullptr, options);
+  helped.start();
+  EXPECT_GE(helped.frameHelperCpu(), 0);
+  EXPECT_EQ(threadCount(), before + 2) << "the haptic thread and its helper";
+  auto device = std::make_unique<ScriptedDevice>(pressingDevice(0.005, model));
+  ASSERT_TRUE(helped.post({LoopCommand::Kind::Grab, 0, device.get(), 0, {}}));
+  std::uint32_t mostTested = 0;  // in the frames seen
+  const auto giveUp = std::chrono::steady_clock::now() + 10s;
+  while (helped.latest().frame < 1000 && std::chrono::steady_clock::now() < giveUp) {
+    mostTested = std::max(mostTested, helped.latest().objects[0].tested);
+    std::this_thread::sleep_for(1ms);
+  }
+  const FrameSnapshot resting = helped.latest();
+  EXPECT_GE(resting.frame, 1000u);
+  EXPECT_GE(mostTested, PairCoherence::kHelpedTests) << "frames large enough for the helper";
+  EXPECT_GT(resting.objects[0].forceWorld.z, 0.0);  // the plate pushes back up
+  helped.stop();
+  EXPECT_EQ(threadCount(), before);
+}
+
+// where the haptic thread may run on one CPU only there is no spare core: start() says so
+// and leaves no thread behind
+TEST_F(HapticLoopTest, AFrameHelperWithoutASpareCoreIsRefusedAtStart) {
+  loop_->stop();
+  std::thread([&] {
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(static_cast<std::size_t>(sched_getcpu()), &one);
+    ASSERT_EQ(pthread_setaffinity_np(pthread_self(), sizeof(one), &one), 0);
+    const std::size_t before = threadCount();
+    HapticLoopOptions options;
+    options.realtime = false;
+    options.frameHelper = true;
+    HapticLoop refused(model_, makeSimState(model_), nullptr, options);
+    try {
+      refused.start();
+      ADD_FAILURE() << "started with a frame helper on one CPU";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("spare core"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(threadCount(), before);
+  }).join();
 }
 
 /// Keeps the calling thread busy (never sleeping) for `duration`.
