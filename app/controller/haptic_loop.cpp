@@ -4,7 +4,6 @@
 #include <chrono>
 #include <future>
 
-#include "haptics/core/error.h"
 #include "haptics/runtime/frame_clock.h"
 #include "haptics/runtime/frame_helper.h"
 
@@ -64,7 +63,7 @@ void HapticLoop::start() {
       try {
         workspace_.helper = std::make_shared<FrameHelper>();
         helperCpu_ = workspace_.helper->cpu();
-      } catch (const Error&) {
+      } catch (...) {  // no spare core (Error), or no thread to be had
         ready.set_exception(std::current_exception());
         return;
       }
@@ -72,11 +71,11 @@ void HapticLoop::start() {
     if (options_.realtime) realtime_ = requestRealtime(options_.fifoPriority);
     ready.set_value();
     run();
-    workspace_.helper.reset();  // on this thread: its CPUs come back before it ends
+    workspace_.helper.reset();  // the helper ends with the frames, not with the loop object
   });
   try {
     started.get();
-  } catch (const Error&) {
+  } catch (...) {
     thread_.join();
     throw;
   }
