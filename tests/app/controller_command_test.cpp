@@ -15,6 +15,7 @@
 #include "net/frontend/frontend_client.h"
 #include "support/child_process.h"
 #include "support/cli_runner.h"
+#include "support/helper_thread.h"
 
 namespace voxhap::test {
 namespace {
@@ -509,7 +510,7 @@ TEST_F(ControllerCommand, AClientLoadsASceneWithProgressAndThenSimulatesIt) {
 // --frame-helper: the controller says on which CPU its helper runs, on stderr and in its
 // summary, and turns the ball as without
 TEST_F(ControllerCommand, AFrameHelperIsNamedInTheSummary) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
+  if (const char* why = noSpareCore()) GTEST_SKIP() << why;
   start({"--device", "script:" + asset("scripts/ball-turn.txt"), "--frame-helper", "--duration", "1"});
   const nlohmann::json summary = finish();
   EXPECT_GT(summary.at("frames").get<std::uint64_t>(), 0u);

@@ -15,6 +15,7 @@
 #include "support/cli_runner.h"
 #include "support/contact_scenes.h"
 #include "support/gltf_fixtures.h"
+#include "support/helper_thread.h"
 
 namespace voxhap::test {
 namespace {
@@ -72,7 +73,7 @@ TEST_F(SimulateCommand, AFixedCapacityRepeatsAndBruteForceTestsEveryPoint) {
 
 // --frame-helper: the same frames, bit for bit (the trace's every column but compute time).
 TEST_F(SimulateCommand, AFrameHelperGivesTheSameTrace) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
+  if (const char* why = noSpareCore()) GTEST_SKIP() << why;
   const std::string script = writeScript("0 1 0 0 0 0 0 0\n0.1 0.995 0.0998 0 0 0 0 0\n");
   auto traceOf = [&](const std::string& file, std::initializer_list<std::string> extra) {
     std::vector<std::string> args = {"simulate",

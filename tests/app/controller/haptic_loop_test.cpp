@@ -22,6 +22,7 @@
 #include "haptics/geometry/mesh_builder.h"
 #include "haptics/runtime/frame_clock.h"
 #include "support/contact_scenes.h"
+#include "support/helper_thread.h"
 
 namespace voxhap::controller {
 namespace {
@@ -278,7 +279,7 @@ std::size_t threadCount() {
 // more than 1,024 tests; at 0.5 mm only the first, which a poll once missed) pressed onto
 // the plate, and ends with the loop
 TEST_F(HapticLoopTest, AFrameHelperComesWithTheHapticThreadAndEndsWithIt) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: no spare core for a helper";
+  if (const char* why = test::noSpareCore()) GTEST_SKIP() << why;
   loop_->stop();
   SceneModelOptions fine = test::ampleCapacityOptions();
   fine.staticVoxelSizeM = 1e-3;

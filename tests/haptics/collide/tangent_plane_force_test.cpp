@@ -170,14 +170,14 @@ TEST(TangentPlaneForce, ManyContactsAreSummedInTwoHalvesAlikeWithAndWithoutAHelp
       many.push_back(c);
     }
   }
-  const DepthRowSink probe{{}, 0.0};  // the rows of the contacts that push
+  constexpr double kRowFloorM = 0.0;  // the rows of the contacts that push
   // each contact alone: its force unscaled (one push), its row
   glm::dvec3 forceSumN(0.0);
   std::uint32_t pushing = 0;
   std::vector<DepthRow> expectedRows;
   for (const PointContact& c : many) {
     DepthRow row;
-    const DepthRowSink one{std::span(&row, 1), probe.minDepthM};
+    const DepthRowSink one{std::span(&row, 1), kRowFloorM};
     const PairWrench w = tangentPlaneWrench(pair.shell, pair.voxmap, pair.params, pair.shellMotion,
                                             pair.voxmapMotion, std::span(&c, 1), &one);
     forceSumN += w.forceOnShellWorld;
@@ -190,7 +190,7 @@ TEST(TangentPlaneForce, ManyContactsAreSummedInTwoHalvesAlikeWithAndWithoutAHelp
 
   const auto sum = [&](FrameHelper* helper, std::vector<DepthRow>& rows) {
     rows.assign(many.size(), DepthRow{});
-    const DepthRowSink sink{rows, probe.minDepthM};
+    const DepthRowSink sink{rows, kRowFloorM};
     const PairWrench w = tangentPlaneWrench(pair.shell, pair.voxmap, pair.params, pair.shellMotion,
                                             pair.voxmapMotion, many, &sink, helper);
     rows.resize(w.depthRows);
