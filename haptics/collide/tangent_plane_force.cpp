@@ -1,9 +1,11 @@
 #include "haptics/collide/tangent_plane_force.h"
 
 #include <algorithm>
+#include <array>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "haptics/collide/surface_distance.h"
 #include "haptics/runtime/frame_helper.h"
@@ -38,6 +40,36 @@ struct WrenchSums {
   }
 };
 
+/// g / |g|, or zero for zero.
+glm::dvec3 unitOfAny(const glm::ivec3& g) noexcept {
+  const glm::dvec3 d(g);
+  const double length = glm::length(d);
+  return length > 0.0 ? d / length : d;
+}
+
+/// The fall directions of central differences within ±2, as unitOfAny gives them: the
+/// common case, a field's values stepping by one a layer (far and paged neighbours aside).
+constexpr int kTabledFall = 2;
+constexpr int kTabledFallSpan = 2 * kTabledFall + 1;
+constexpr std::size_t kTabledFalls = kTabledFallSpan * kTabledFallSpan * kTabledFallSpan;
+const std::array<glm::dvec3, kTabledFalls> kUnitFalls = [] {
+  std::array<glm::dvec3, kTabledFalls> table;
+  for (int i = 0; i < static_cast<int>(table.size()); ++i) {
+    table[static_cast<std::size_t>(i)] =
+        unitOfAny(glm::ivec3(i % kTabledFallSpan, i / kTabledFallSpan % kTabledFallSpan,
+                             i / (kTabledFallSpan * kTabledFallSpan)) -
+                  kTabledFall);
+  }
+  return table;
+}();
+
+/// unitOfAny(g), from the table where it holds g: a square root and three divisions saved.
+glm::dvec3 unitOf(const glm::ivec3& g) noexcept {
+  const glm::ivec3 at = g + kTabledFall;
+  if (glm::any(glm::greaterThanEqual(glm::uvec3(at), glm::uvec3(kTabledFallSpan)))) return unitOfAny(g);
+  return kUnitFalls[static_cast<std::size_t>(at.x + kTabledFallSpan * (at.y + kTabledFallSpan * at.z))];
+}
+
 /// Unit direction, voxmap frame, in which the field at `shift` falls around `ijk`
 /// (far counts as one more than the largest value); zero where it is flat. A neighbour
 /// paged out (paged voxmap) counts as the centre and is noted in `out`.
@@ -58,12 +90,9 @@ glm::dvec3 fallDirection(const Voxmap& voxmap, const glm::ivec3& ijk, std::uint8
   // whole vectors, not one component at a time: a vector written by component and read
   // whole stalled on store forwarding (perf, contactWrenches)
   auto fallAlong = [&](std::size_t below, std::size_t above) {
-    return double((values[below] < 0 ? centre : values[below]) -
-                  (values[above] < 0 ? centre : values[above]));
+    return (values[below] < 0 ? centre : values[below]) - (values[above] < 0 ? centre : values[above]);
   };
-  const glm::dvec3 g(fallAlong(1, 2), fallAlong(3, 4), fallAlong(5, 6));
-  const double length = glm::length(g);
-  return length > 0.0 ? g / length : g;
+  return unitOf(glm::ivec3(fallAlong(1, 2), fallAlong(3, 4), fallAlong(5, 6)));
 }
 
 /// The contact normal (toward the voxmap object), by what the point meets: the field it
