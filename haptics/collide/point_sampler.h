@@ -10,7 +10,6 @@
 
 #include <array>
 #include <climits>
-#include <cmath>
 #include <cstdint>
 
 #include <glm/mat3x3.hpp>
