@@ -5,7 +5,9 @@
 // the ball's centre, summed by tangentPlaneWrench. Each iteration takes the next of a few
 // poses, sampled beforehand, so that the voxmap reads are not all cache-warm. Counters:
 // contacts per second, how many of them push. The second argument 1: a frame helper (a
-// second thread, frame_helper.h) sums half of them.
+// second thread, frame_helper.h) sums half of them. surfaceContactWrenches: the same with
+// contact finer than a voxel, the commands' default (surfaceContactBallModel: every
+// contact pushes, each measured by its voxel's surface plane and its neighbours').
 #include <map>
 #include <memory>
 
@@ -29,11 +31,12 @@ struct SeatedBall {
   std::vector<SampledPose> poses;
 };
 
-const SeatedBall& seatedBall(double voxelM) {
-  static std::map<double, std::unique_ptr<SeatedBall>> cache;
-  auto& entry = cache[voxelM];
+const SeatedBall& seatedBall(double voxelM, bool surfaceContact) {
+  static std::map<std::pair<double, bool>, std::unique_ptr<SeatedBall>> cache;
+  auto& entry = cache[{voxelM, surfaceContact}];
   if (entry) return *entry;
-  entry = std::make_unique<SeatedBall>(SeatedBall{seatedBallModel(voxelM), {}});
+  entry = std::make_unique<SeatedBall>(
+      SeatedBall{surfaceContact ? surfaceContactBallModel(voxelM) : seatedBallModel(voxelM), {}});
   const SimModel& model = entry->model;
   const PairModel& pair = model.pairs[0];
   const MovingObjectModel& ball = model.objects[0];
@@ -56,8 +59,8 @@ const SeatedBall& seatedBall(double voxelM) {
   return *entry;
 }
 
-void contactWrenches(benchmark::State& state) {
-  const SeatedBall& b = seatedBall(static_cast<double>(state.range(0)) * 1e-5);
+void wrenchesOf(benchmark::State& state, bool surfaceContact) {
+  const SeatedBall& b = seatedBall(static_cast<double>(state.range(0)) * 1e-5, surfaceContact);
   const PairModel& pair = b.model.pairs[0];
   const Pointshell& shell = b.model.objects[0].shell;
   const Voxmap& socket = b.model.voxmapOf(pair);
@@ -79,7 +82,15 @@ void contactWrenches(benchmark::State& state) {
   state.counters["contacts_per_s"] = benchmark::Counter(contacts, benchmark::Counter::kIsRate);
 }
 // voxel size in units of 10 µm (0.35 mm and 0.15 mm), and without or with a helper
+void contactWrenches(benchmark::State& state) {
+  wrenchesOf(state, false);
+}
+void surfaceContactWrenches(benchmark::State& state) {
+  wrenchesOf(state, true);
+}
+
 BENCHMARK(contactWrenches)->ArgsProduct({{35, 15}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(surfaceContactWrenches)->ArgsProduct({{35, 15}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace voxhap

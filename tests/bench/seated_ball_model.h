@@ -24,4 +24,21 @@ inline const SimModel& seatedBallModel(double voxelM) {
   return *entry;
 }
 
+/// The same ball with contact finer than a voxel (the commands' default contact), its
+/// points half a voxel inward and its pair at the default force layer: every point of the
+/// mating surfaces lies closer to the socket's exact surface than the contact distance
+/// (0.75 point spacings), so every contact pushes, measured by surface planes.
+inline const SimModel& surfaceContactBallModel(double voxelM) {
+  static std::map<double, std::unique_ptr<SimModel>> cache;
+  auto& entry = cache[voxelM];
+  if (entry) return *entry;
+  SceneModelOptions options;
+  options.sim.surfaceContact = true;
+  options.staticVoxelSizeM = voxelM;
+  options.pointSpacingM = voxelM;
+  options.pointDisplacementM = -0.5 * voxelM;
+  entry = std::make_unique<SimModel>(buildSceneModel(makeBallAndSocket(), {"ball"}, options));
+  return *entry;
+}
+
 }  // namespace voxhap
