@@ -1,24 +1,26 @@
 #include "haptics/collide/surface_distance.h"
 
+#include <array>
+
 #include <glm/geometric.hpp>
 
 namespace voxhap {
 
-SurfaceDistance surfaceDistance(const Voxmap& voxmap, const glm::ivec3& ijkVoxel, const SurfacePlane& own,
-                                const glm::dvec3& pointLocal) noexcept {
-  const VoxelGrid& grid = voxmap.grid();
-  const double s = grid.voxelSizeM;
-  const glm::dvec3 centre = grid.voxelCentre(ijkVoxel);
-  const glm::dvec3 ownOutward = own.outwardUnit();
-  const double ownVoxels = own.distanceVoxels();
+SurfaceDistance surfaceDistance(const Voxmap& voxmap, const glm::ivec3& ijkVoxel,
+                                const OwnPlaneReading& own) noexcept {
+  const double s = voxmap.grid().voxelSizeM;
   // the point and the neighbours' centres in voxels from the own centre
-  const glm::dvec3 point = (pointLocal - centre) / s;
-  SurfaceDistance best{ownPlaneDistanceM(grid, ijkVoxel, own, pointLocal), ownOutward};
+  const glm::dvec3& point = own.pointVoxels;
+  const glm::dvec3& ownOutward = own.outwardUnit;
+  const double ownVoxels = own.distanceVoxels;
+  SurfaceDistance best{own.distanceM, ownOutward};
+  const glm::ivec3 side(point.x < 0.0 ? -1 : 1, point.y < 0.0 ? -1 : 1, point.z < 0.0 ? -1 : 1);
+  const std::array<const SurfacePlane*, 3> beside = voxmap.surfacePlanesBeside(ijkVoxel, side);
   for (int axis = 0; axis < 3; ++axis) {
-    glm::ivec3 offset(0);
-    offset[axis] = point[axis] < 0.0 ? -1 : 1;
-    const SurfacePlane* other = voxmap.surfacePlane(ijkVoxel + offset);
+    const SurfacePlane* other = beside[static_cast<std::size_t>(axis)];
     if (!other) continue;
+    glm::ivec3 offset(0);
+    offset[axis] = side[axis];
     const glm::dvec3 otherOutward = other->outwardUnit();
     const double otherVoxels = other->distanceVoxels();
     const glm::dvec3 apart(offset);

@@ -30,17 +30,27 @@ struct SurfaceDistance {
   glm::dvec3 outwardUnit{0.0};  ///< the normal of the plane that gave it, voxmap frame
 };
 
-/// φ at `pointLocal` (voxmap frame, m) by the plane `own` of voxel `ijkVoxel` alone:
-/// surfaceDistance starts from this value and never gives less.
-inline double ownPlaneDistanceM(const VoxelGrid& grid, const glm::ivec3& ijkVoxel, const SurfacePlane& own,
-                                const glm::dvec3& pointLocal) noexcept {
-  const glm::dvec3 point = (pointLocal - grid.voxelCentre(ijkVoxel)) / grid.voxelSizeM;
-  return (own.distanceVoxels() + glm::dot(point, own.outwardUnit())) * grid.voxelSizeM;
+/// A point of a voxel as the voxel's own plane reads it: where surfaceDistance starts.
+struct OwnPlaneReading {
+  glm::dvec3 pointVoxels{0.0};  ///< the point from the voxel's centre, voxels
+  glm::dvec3 outwardUnit{0.0};  ///< n_c of the own plane
+  double distanceVoxels = 0.0;  ///< φ_c of the own plane, voxels
+  double distanceM = 0.0;       ///< φ(p) by the own plane alone, m: surfaceDistance never gives less
+};
+
+/// `pointLocal` (voxmap frame, m), a point of voxel `ijkVoxel`, read by that voxel's plane `own`.
+inline OwnPlaneReading readOwnPlane(const VoxelGrid& grid, const glm::ivec3& ijkVoxel,
+                                    const SurfacePlane& own, const glm::dvec3& pointLocal) noexcept {
+  OwnPlaneReading r;
+  r.pointVoxels = (pointLocal - grid.voxelCentre(ijkVoxel)) / grid.voxelSizeM;
+  r.outwardUnit = own.outwardUnit();
+  r.distanceVoxels = own.distanceVoxels();
+  r.distanceM = (r.distanceVoxels + glm::dot(r.pointVoxels, r.outwardUnit)) * grid.voxelSizeM;
+  return r;
 }
 
-/// φ at `pointLocal` (voxmap frame, m), a point of voxel `ijkVoxel`, whose plane `own`
-/// is voxmap.surfacePlane(ijkVoxel).
-SurfaceDistance surfaceDistance(const Voxmap& voxmap, const glm::ivec3& ijkVoxel, const SurfacePlane& own,
-                                const glm::dvec3& pointLocal) noexcept;
+/// φ at a point of voxel `ijkVoxel` that its own plane reads as `own` (readOwnPlane).
+SurfaceDistance surfaceDistance(const Voxmap& voxmap, const glm::ivec3& ijkVoxel,
+                                const OwnPlaneReading& own) noexcept;
 
 }  // namespace voxhap

@@ -178,17 +178,19 @@ WrenchSums sumContacts(const Pointshell& shell, const Voxmap& voxmap, const Cont
     if (planes && !plane && c.value > kValueFeature) continue;
     glm::dvec3 pushDirection;
     double depth = 0.0;
+    OwnPlaneReading own;
+    if (plane) own = readOwnPlane(grid, c.ijkVoxel, *plane, p);
     if (plane && !beforeContact) {
       // the own plane bounds φ from below, so the depth from above: a point that can
       // neither push nor limit the step needs no neighbours' planes
-      const double depthBoundM = params.surfaceContactM - ownPlaneDistanceM(grid, c.ijkVoxel, *plane, p);
+      const double depthBoundM = params.surfaceContactM - own.distanceM;
       if (depthBoundM <= 0.0 && (!sink || depthBoundM <= sink->minDepthM)) {
         ++out.contactPoints;
         continue;
       }
     }
     if (plane) {
-      const SurfaceDistance phi = surfaceDistance(voxmap, c.ijkVoxel, *plane, p);
+      const SurfaceDistance phi = surfaceDistance(voxmap, c.ijkVoxel, own);
       pushDirection = -phi.outwardUnit;
       if (!beforeContact) depth = params.surfaceContactM - phi.distanceM;
     } else {

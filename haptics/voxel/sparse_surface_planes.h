@@ -44,9 +44,17 @@ public:
     const std::uint32_t bit = voxelInChunk % kVoxelsPerMask;
     const std::uint64_t mask = occupancy_[m];
     if (!((mask >> bit) & 1u)) return nullptr;
-    const std::size_t k = std::size_t{first_[m]} +
-                          static_cast<std::size_t>(std::popcount(mask & ((std::uint64_t{1} << bit) - 1)));
+    const std::size_t k = std::size_t{first_[m]} + bitsSet(mask & ((std::uint64_t{1} << bit) - 1));
     return &segments_[k >> kSegmentLog2][k & ((std::size_t{1} << kSegmentLog2) - 1)];
+  }
+
+  /// std::popcount inline: on the x86-64 baseline (no POPCNT) std::popcount calls
+  /// libgcc's __popcountdi2, 5 % of the surface-contact wrench (perf).
+  static constexpr std::size_t bitsSet(std::uint64_t x) noexcept {
+    x -= (x >> 1) & 0x5555555555555555u;
+    x = (x & 0x3333333333333333u) + ((x >> 2) & 0x3333333333333333u);
+    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+    return static_cast<std::size_t>((x * 0x0101010101010101u) >> 56);
   }
 
   bool empty() const noexcept { return occupancy_.empty(); }

@@ -120,6 +120,27 @@ public:
     if (chunkEntry & kUniform) return nullptr;
     return planes_.find(chunkEntry, voxelInChunk(ijkVoxel));
   }
+  /// The surface planes of the voxels beside `ijkVoxel` along x, y and z, each on the side
+  /// `side` names (−1 or +1 per axis), as surfacePlane() gives them: one tree walk for
+  /// those in the chunk of `ijkVoxel`.
+  std::array<const SurfacePlane*, 3> surfacePlanesBeside(const glm::ivec3& ijkVoxel,
+                                                         const glm::ivec3& side) const {
+    std::array<const SurfacePlane*, 3> beside{};
+    if (planes_.empty()) return beside;
+    const bool inGrid = grid_.containsVoxel(ijkVoxel);
+    const std::uint32_t chunkEntry = inGrid ? treeEntry_(ijkVoxel) : kUniform;
+    const glm::ivec3 chunk = ijkVoxel >> kChunkEdgeLog2;
+    for (int axis = 0; axis < 3; ++axis) {
+      glm::ivec3 v = ijkVoxel;
+      v[axis] += side[axis];
+      if (!inGrid || (v[axis] >> kChunkEdgeLog2) != chunk[axis]) {
+        beside[static_cast<std::size_t>(axis)] = surfacePlane(v);
+      } else if (!(chunkEntry & kUniform)) {
+        beside[static_cast<std::size_t>(axis)] = planes_.find(chunkEntry, voxelInChunk(v));
+      }
+    }
+    return beside;
+  }
   /// Gives an unpaged voxmap its surface planes: one chunk of them per mixed chunk, in the
   /// order of the chunks' blocks of words (computeSurfacePlanes).
   void setSurfacePlanes(SparseSurfacePlanes planes);

@@ -44,8 +44,8 @@ std::optional<Estimates> estimatesAt(const Voxmap& voxmap, const glm::dvec3& p) 
   const glm::ivec3 ijk = voxmap.grid().voxelOf(p);
   const SurfacePlane* plane = voxmap.surfacePlane(ijk);
   if (!plane) return std::nullopt;
-  return Estimates{ownPlaneDistanceM(voxmap.grid(), ijk, *plane, p),
-                   surfaceDistance(voxmap, ijk, *plane, p).distanceM};
+  const OwnPlaneReading own = readOwnPlane(voxmap.grid(), ijk, *plane, p);
+  return Estimates{own.distanceM, surfaceDistance(voxmap, ijk, own).distanceM};
 }
 
 TEST(SurfaceDistance, AroundABoxsEdgesAndCornersIsNearerTheTruthThanTheVoxelsOwnPlaneAndNeverAboveIt) {

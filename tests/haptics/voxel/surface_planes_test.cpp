@@ -1,5 +1,6 @@
 #include "haptics/voxel/surface_planes.h"
 
+#include <array>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -128,6 +129,33 @@ TEST(SurfacePlanes, AreTheSameBitsWhateverTheThreadCount) {
   const Voxmap two = voxelizeWithPlanes(sphere, 2);
   EXPECT_TRUE(one.surfacePlanes() == two.surfacePlanes());
   EXPECT_GT(one.surfacePlanes().planeCount(), 0u);
+}
+
+TEST(SurfacePlanes, BesideAVoxelAreItsNeighboursPlanesOnEitherSideWithinChunksAcrossThemAndOutsideTheGrid) {
+  TriangleMesh sphere;
+  appendGeodesicSphere(sphere, glm::translate(glm::dmat4(1.0), glm::dvec3(0.003)), 0.0025, 4);
+  const Voxmap voxmap = voxelizeWithPlanes(sphere);
+  const glm::ivec3 dims = voxmap.grid().dimsVoxels();
+  std::size_t planesBeside = 0;
+  // every voxel of the grid and a layer beyond it, every side: voxels inside chunks, on
+  // chunk faces, in uniform chunks, outside
+  for (int z = -1; z <= dims.z; ++z)
+    for (int y = -1; y <= dims.y; ++y)
+      for (int x = -1; x <= dims.x; ++x)
+        for (int sides = 0; sides < 8; ++sides) {
+          const glm::ivec3 v(x, y, z);
+          const glm::ivec3 side(sides & 1 ? 1 : -1, sides & 2 ? 1 : -1, sides & 4 ? 1 : -1);
+          const std::array<const SurfacePlane*, 3> beside = voxmap.surfacePlanesBeside(v, side);
+          for (int axis = 0; axis < 3; ++axis) {
+            glm::ivec3 neighbour = v;
+            neighbour[axis] += side[axis];
+            ASSERT_EQ(beside[static_cast<std::size_t>(axis)], voxmap.surfacePlane(neighbour))
+                << x << " " << y << " " << z << " side " << sides << " axis " << axis;
+            planesBeside += beside[static_cast<std::size_t>(axis)] ? 1 : 0;
+          }
+        }
+  // each plane is beside 24 (voxel, side, axis) of these: two voxels an axis, four sides each
+  EXPECT_EQ(planesBeside, 24 * voxmap.surfacePlanes().planeCount());
 }
 
 }  // namespace
