@@ -48,15 +48,6 @@ public:
     return &segments_[k >> kSegmentLog2][k & ((std::size_t{1} << kSegmentLog2) - 1)];
   }
 
-  /// std::popcount inline: on the x86-64 baseline (no POPCNT) std::popcount calls
-  /// libgcc's __popcountdi2, 5 % of the surface-contact wrench (perf).
-  static constexpr std::size_t bitsSet(std::uint64_t x) noexcept {
-    x -= (x >> 1) & 0x5555555555555555u;
-    x = (x & 0x3333333333333333u) + ((x >> 2) & 0x3333333333333333u);
-    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fu;
-    return static_cast<std::size_t>((x * 0x0101010101010101u) >> 56);
-  }
-
   bool empty() const noexcept { return occupancy_.empty(); }
   std::size_t chunkCount() const noexcept { return occupancy_.size() / kMasksPerChunk; }
   /// A bit per voxel of the mixed chunks: whether it has a plane.
@@ -75,6 +66,15 @@ public:
   }
 
 private:
+  /// std::popcount inline: on the x86-64 baseline (no POPCNT) std::popcount calls
+  /// libgcc's __popcountdi2, 5 % of the surface-contact wrench (perf).
+  static constexpr std::size_t bitsSet(std::uint64_t x) noexcept {
+    x -= (x >> 1) & 0x5555555555555555u;
+    x = (x & 0x3333333333333333u) + ((x >> 2) & 0x3333333333333333u);
+    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+    return static_cast<std::size_t>((x * 0x0101010101010101u) >> 56);
+  }
+
   std::vector<std::uint64_t> occupancy_;
   std::vector<std::uint32_t> first_;                 // per mask: the index of its first plane
   std::vector<std::vector<SurfacePlane>> segments_;  // all full but the last

@@ -6,10 +6,11 @@
 // poses, sampled beforehand, so that the voxmap reads are not all cache-warm. Counters:
 // contacts per second, how many of them push. The second argument 1: a frame helper (a
 // second thread, frame_helper.h) sums half of them. surfaceContactWrenches: the same with
-// contact finer than a voxel, the commands' default (surfaceContactBallModel: every
+// contact finer than a voxel, the commands' default (ballInSocketModel: every
 // contact pushes, each measured by its voxel's surface plane and its neighbours').
 #include <map>
 #include <memory>
+#include <utility>
 
 #include <benchmark/benchmark.h>
 #include <glm/gtc/quaternion.hpp>
@@ -35,8 +36,7 @@ const SeatedBall& seatedBall(double voxelM, bool surfaceContact) {
   static std::map<std::pair<double, bool>, std::unique_ptr<SeatedBall>> cache;
   auto& entry = cache[{voxelM, surfaceContact}];
   if (entry) return *entry;
-  entry = std::make_unique<SeatedBall>(
-      SeatedBall{surfaceContact ? surfaceContactBallModel(voxelM) : seatedBallModel(voxelM), {}});
+  entry = std::make_unique<SeatedBall>(SeatedBall{ballInSocketModel(voxelM, surfaceContact), {}});
   const SimModel& model = entry->model;
   const PairModel& pair = model.pairs[0];
   const MovingObjectModel& ball = model.objects[0];
@@ -81,7 +81,6 @@ void wrenchesOf(benchmark::State& state, bool surfaceContact) {
   state.counters["pushing_per_pass"] = pushing / static_cast<double>(state.iterations());
   state.counters["contacts_per_s"] = benchmark::Counter(contacts, benchmark::Counter::kIsRate);
 }
-// voxel size in units of 10 µm (0.35 mm and 0.15 mm), and without or with a helper
 void contactWrenches(benchmark::State& state) {
   wrenchesOf(state, false);
 }
@@ -89,6 +88,7 @@ void surfaceContactWrenches(benchmark::State& state) {
   wrenchesOf(state, true);
 }
 
+// voxel size in units of 10 µm (0.35 mm and 0.15 mm), and without or with a helper
 BENCHMARK(contactWrenches)->ArgsProduct({{35, 15}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK(surfaceContactWrenches)->ArgsProduct({{35, 15}, {0, 1}})->Unit(benchmark::kMillisecond);
 

@@ -4,6 +4,7 @@
 // benchmark's frames.
 #include <map>
 #include <memory>
+#include <utility>
 
 #include "app/bench/ball_seating.h"
 #include "haptics/scene/builtin/builtin_scenes.h"
@@ -11,34 +12,32 @@
 
 namespace voxhap {
 
-inline const SimModel& seatedBallModel(double voxelM) {
-  static std::map<double, std::unique_ptr<SimModel>> cache;
-  auto& entry = cache[voxelM];
+/// The 25 mm ball in its socket at `voxelM`, built once per voxel size and contact: the
+/// paper's, seated as `voxhap bench rotation` seats it; or contact finer than a voxel (the
+/// commands' default), its points half a voxel inward and its pair at the default force
+/// layer, so that every point of the mating surfaces lies closer to the socket's exact
+/// surface than the contact distance (0.75 point spacings) and every contact pushes,
+/// measured by surface planes.
+inline const SimModel& ballInSocketModel(double voxelM, bool surfaceContact) {
+  static std::map<std::pair<double, bool>, std::unique_ptr<SimModel>> cache;
+  auto& entry = cache[{voxelM, surfaceContact}];
   if (entry) return *entry;
   SceneModelOptions options;
   options.staticVoxelSizeM = voxelM;
   options.pointSpacingM = voxelM;
-  options.pointDisplacementM = kBallPointOffsetVoxels * voxelM;
-  options.forceLayerOf = {{"ball", kBallForceLayer}};
+  if (surfaceContact) {
+    options.sim.surfaceContact = true;
+    options.pointDisplacementM = -0.5 * voxelM;
+  } else {
+    options.pointDisplacementM = kBallPointOffsetVoxels * voxelM;
+    options.forceLayerOf = {{"ball", kBallForceLayer}};
+  }
   entry = std::make_unique<SimModel>(buildSceneModel(makeBallAndSocket(), {"ball"}, options));
   return *entry;
 }
 
-/// The same ball with contact finer than a voxel (the commands' default contact), its
-/// points half a voxel inward and its pair at the default force layer: every point of the
-/// mating surfaces lies closer to the socket's exact surface than the contact distance
-/// (0.75 point spacings), so every contact pushes, measured by surface planes.
-inline const SimModel& surfaceContactBallModel(double voxelM) {
-  static std::map<double, std::unique_ptr<SimModel>> cache;
-  auto& entry = cache[voxelM];
-  if (entry) return *entry;
-  SceneModelOptions options;
-  options.sim.surfaceContact = true;
-  options.staticVoxelSizeM = voxelM;
-  options.pointSpacingM = voxelM;
-  options.pointDisplacementM = -0.5 * voxelM;
-  entry = std::make_unique<SimModel>(buildSceneModel(makeBallAndSocket(), {"ball"}, options));
-  return *entry;
+inline const SimModel& seatedBallModel(double voxelM) {
+  return ballInSocketModel(voxelM, false);
 }
 
 }  // namespace voxhap
