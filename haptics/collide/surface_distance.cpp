@@ -11,24 +11,21 @@ SurfaceDistance surfaceDistance(const Voxmap& voxmap, const glm::ivec3& ijkVoxel
   const double s = voxmap.grid().voxelSizeM;
   // the point and the neighbours' centres in voxels from the own centre
   const glm::dvec3& point = own.pointVoxels;
-  const glm::dvec3& ownOutward = own.outwardUnit;
-  const double ownVoxels = own.distanceVoxels;
-  SurfaceDistance best{own.distanceM, ownOutward};
+  SurfaceDistance best{own.distanceM, own.outwardUnit};
   const glm::ivec3 side(point.x < 0.0 ? -1 : 1, point.y < 0.0 ? -1 : 1, point.z < 0.0 ? -1 : 1);
+  std::uint8_t wanted = 0;
+  for (int axis = 0; axis < 3; ++axis) wanted |= SurfacePlane::sideBit(axis, side[axis]);
+  wanted &= own.convexSides;
+  // near a concave surface (a socket's) no neighbour is convex with the own plane: no lookup
+  if (!wanted) return best;
   const std::array<const SurfacePlane*, 3> beside = voxmap.surfacePlanesBeside(ijkVoxel, side);
   for (int axis = 0; axis < 3; ++axis) {
     const SurfacePlane* other = beside[static_cast<std::size_t>(axis)];
-    if (!other) continue;
-    glm::ivec3 offset(0);
-    offset[axis] = side[axis];
-    const glm::dvec3 otherOutward = other->outwardUnit();
-    const double otherVoxels = other->distanceVoxels();
-    const glm::dvec3 apart(offset);
-    const bool convex = otherVoxels - glm::dot(apart, otherOutward) <= ownVoxels &&
-                        ownVoxels + glm::dot(apart, ownOutward) <= otherVoxels;
-    if (!convex) continue;
-    const double atPointM = (otherVoxels + glm::dot(point - apart, otherOutward)) * s;
-    if (atPointM > best.distanceM) best = {atPointM, otherOutward};
+    if (!other || !(wanted & SurfacePlane::sideBit(axis, side[axis]))) continue;
+    glm::dvec3 apart(0.0);
+    apart[axis] = side[axis];
+    const double atPointM = (other->distanceVoxels() + glm::dot(point - apart, other->outwardUnit())) * s;
+    if (atPointM > best.distanceM) best = {atPointM, other->outwardUnit()};
   }
   return best;
 }

@@ -12,6 +12,9 @@
 /// (each lies under the other's value at the other's centre; with no slack, so that the
 /// quantization cannot admit a pair across a concave fold): near a concave edge or inside a
 /// socket a plane may lie above the truth, and the point's own plane stands alone there.
+/// Which pairs agree is decided with the planes (PlaneWithSides), so that no lookup is made
+/// for a neighbour that cannot count: the seated ball's contacts in its socket, 0.5 % of
+/// whose neighbours did, took 60 % less time.
 ///
 /// Measured (surface_distance_test.cpp, 1 mm voxels): outside a box within 1.5 voxels of its
 /// edges and corners, the own plane lies up to 0.41 voxel under the truth, these planes 0.068
@@ -32,19 +35,21 @@ struct SurfaceDistance {
 
 /// A point of a voxel as the voxel's own plane reads it: where surfaceDistance starts.
 struct OwnPlaneReading {
-  glm::dvec3 pointVoxels{0.0};  ///< the point from the voxel's centre, voxels
-  glm::dvec3 outwardUnit{0.0};  ///< n_c of the own plane
-  double distanceVoxels = 0.0;  ///< φ_c of the own plane, voxels
-  double distanceM = 0.0;       ///< φ(p) by the own plane alone, m: surfaceDistance never gives less
+  glm::dvec3 pointVoxels{0.0};   ///< the point from the voxel's centre, voxels
+  glm::dvec3 outwardUnit{0.0};   ///< n_c of the own plane
+  double distanceVoxels = 0.0;   ///< φ_c of the own plane, voxels
+  double distanceM = 0.0;        ///< φ(p) by the own plane alone, m: surfaceDistance never gives less
+  std::uint8_t convexSides = 0;  ///< the neighbours whose planes may give more (PlaneWithSides)
 };
 
 /// `pointLocal` (voxmap frame, m), a point of voxel `ijkVoxel`, read by that voxel's plane `own`.
 inline OwnPlaneReading readOwnPlane(const VoxelGrid& grid, const glm::ivec3& ijkVoxel,
-                                    const SurfacePlane& own, const glm::dvec3& pointLocal) noexcept {
+                                    const PlaneWithSides& own, const glm::dvec3& pointLocal) noexcept {
   OwnPlaneReading r;
   r.pointVoxels = (pointLocal - grid.voxelCentre(ijkVoxel)) / grid.voxelSizeM;
-  r.outwardUnit = own.outwardUnit();
-  r.distanceVoxels = own.distanceVoxels();
+  r.outwardUnit = own.plane->outwardUnit();
+  r.distanceVoxels = own.plane->distanceVoxels();
+  r.convexSides = own.convexSides;
   r.distanceM = (r.distanceVoxels + glm::dot(r.pointVoxels, r.outwardUnit)) * grid.voxelSizeM;
   return r;
 }

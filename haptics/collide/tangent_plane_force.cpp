@@ -173,13 +173,15 @@ WrenchSums sumContacts(const Pointshell& shell, const Voxmap& voxmap, const Cont
     const glm::dvec3 p =
         shellToVoxmapRotation * glm::dvec3(shell.positionsLocal[c.point]) + shellToVoxmapShift;
     const bool beforeContact = c.value > params.forceLayer;
-    const SurfacePlane* plane = planes ? voxmap.surfacePlane(c.ijkVoxel) : nullptr;
+    const PlaneWithSides planeWithSides =
+        planes ? voxmap.surfacePlaneWithSides(c.ijkVoxel) : PlaneWithSides{};
+    const SurfacePlane* plane = planeWithSides.plane;
     // no plane: deep inside (the voxel's tangent plane stands in), or too far out to push
     if (planes && !plane && c.value > kValueFeature) continue;
     glm::dvec3 pushDirection;
     double depth = 0.0;
     OwnPlaneReading own;
-    if (plane) own = readOwnPlane(grid, c.ijkVoxel, *plane, p);
+    if (plane) own = readOwnPlane(grid, c.ijkVoxel, planeWithSides, p);
     if (plane && !beforeContact) {
       // the own plane bounds φ from below, so the depth from above: a point that can
       // neither push nor limit the step needs no neighbours' planes

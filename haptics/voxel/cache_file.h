@@ -32,7 +32,8 @@ namespace voxhap {
 /// 3: voxmaps end with their surface planes (surface_planes.h), none when not asked for.
 /// 4: the surface planes sparse: a bit per voxel of the mixed chunks, then the planes of
 ///    the voxels whose bit is set (sparse_surface_planes.h).
-inline constexpr std::uint32_t kCacheFormatVersion = 4;
+/// 5: the planes followed by their convex sides, a byte each (PlaneWithSides).
+inline constexpr std::uint32_t kCacheFormatVersion = 5;
 
 /// What a cache file holds.
 enum class CacheKind : std::uint32_t { Voxmap = 1, Pointshell = 2 };

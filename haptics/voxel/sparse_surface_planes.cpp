@@ -54,8 +54,14 @@ bool SparseSurfacePlanes::complete() const noexcept {
   });
 }
 
+void SparseSurfacePlanes::setConvexSides(std::vector<std::uint8_t> sides) {
+  assert(sides.size() == planeCount());
+  convexSides_ = std::move(sides);
+}
+
 std::size_t SparseSurfacePlanes::memoryBytes() const noexcept {
-  std::size_t bytes = occupancy_.size() * sizeof(std::uint64_t) + first_.size() * sizeof(std::uint32_t);
+  std::size_t bytes =
+      occupancy_.size() * sizeof(std::uint64_t) + first_.size() * sizeof(std::uint32_t) + convexSides_.size();
   for (const std::vector<SurfacePlane>& s : segments_) bytes += s.size() * sizeof(SurfacePlane);
   return bytes;
 }

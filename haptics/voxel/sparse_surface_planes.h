@@ -8,7 +8,7 @@
 /// planes follow packed, in voxel order, in segments of 2^20 that are never moved (so
 /// that building the store never holds two copies of it). A lookup is three dependent
 /// loads and a popcount; 12 bytes per 64 voxels beside 8 per plane, against 8 per voxel
-/// dense.
+/// dense. Each plane's convex sides (PlaneWithSides), a byte, follow in one array.
 
 #include <bit>
 #include <cstdint>
@@ -20,6 +20,13 @@
 #include "haptics/voxel/tree_shape.h"
 
 namespace voxhap {
+
+/// A voxel's plane and the set of its face neighbours (SurfacePlane::sideBit) whose planes
+/// it is convex with (SurfacePlane::convexWith): the neighbours worth reading at a point.
+struct PlaneWithSides {
+  const SurfacePlane* plane = nullptr;
+  std::uint8_t convexSides = 0;
+};
 
 class SparseSurfacePlanes {
 public:
@@ -40,12 +47,19 @@ public:
 
   /// The plane of voxel `voxelInChunk` of the `block`-th mixed chunk, or null.
   const SurfacePlane* find(std::uint32_t block, std::uint32_t voxelInChunk) const noexcept {
-    const std::size_t m = std::size_t{block} * kMasksPerChunk + voxelInChunk / kVoxelsPerMask;
-    const std::uint32_t bit = voxelInChunk % kVoxelsPerMask;
-    const std::uint64_t mask = occupancy_[m];
-    if (!((mask >> bit) & 1u)) return nullptr;
-    const std::size_t k = std::size_t{first_[m]} + bitsSet(mask & ((std::uint64_t{1} << bit) - 1));
-    return &segments_[k >> kSegmentLog2][k & ((std::size_t{1} << kSegmentLog2) - 1)];
+    const std::size_t k = indexOf(block, voxelInChunk);
+    return k == kNoPlane ? nullptr : &planeAt(k);
+  }
+  /// The index of the first plane of the `block`-th mixed chunk: its planes follow in voxel order.
+  std::size_t firstPlaneOf(std::uint32_t block) const noexcept {
+    return first_[std::size_t{block} * kMasksPerChunk];
+  }
+  /// The same, with the sides on which its face neighbours' planes are convex with it
+  /// (setConvexSides).
+  PlaneWithSides findWithSides(std::uint32_t block, std::uint32_t voxelInChunk) const noexcept {
+    const std::size_t k = indexOf(block, voxelInChunk);
+    if (k == kNoPlane) return {};
+    return {&planeAt(k), convexSides_[k]};
   }
 
   bool empty() const noexcept { return occupancy_.empty(); }
@@ -61,11 +75,31 @@ public:
   std::span<SurfacePlane> segment(std::size_t k) noexcept { return segments_[k]; }
   std::size_t memoryBytes() const noexcept;
 
+  /// Every plane's convex sides, in the planes' order (Voxmap::setSurfacePlanes computes
+  /// them): planeCount() of them.
+  void setConvexSides(std::vector<std::uint8_t> sides);
+  std::span<const std::uint8_t> convexSides() const noexcept { return convexSides_; }
+
   bool operator==(const SparseSurfacePlanes& other) const {
-    return occupancy_ == other.occupancy_ && segments_ == other.segments_;
+    return occupancy_ == other.occupancy_ && segments_ == other.segments_ &&
+           convexSides_ == other.convexSides_;
   }
 
 private:
+  static constexpr std::size_t kNoPlane = ~std::size_t{0};
+
+  /// The index of the plane of voxel `voxelInChunk` of the `block`-th mixed chunk, or kNoPlane.
+  std::size_t indexOf(std::uint32_t block, std::uint32_t voxelInChunk) const noexcept {
+    const std::size_t m = std::size_t{block} * kMasksPerChunk + voxelInChunk / kVoxelsPerMask;
+    const std::uint32_t bit = voxelInChunk % kVoxelsPerMask;
+    const std::uint64_t mask = occupancy_[m];
+    if (!((mask >> bit) & 1u)) return kNoPlane;
+    return std::size_t{first_[m]} + bitsSet(mask & ((std::uint64_t{1} << bit) - 1));
+  }
+  const SurfacePlane& planeAt(std::size_t k) const noexcept {
+    return segments_[k >> kSegmentLog2][k & ((std::size_t{1} << kSegmentLog2) - 1)];
+  }
+
   /// std::popcount inline: on the x86-64 baseline (no POPCNT) std::popcount calls
   /// libgcc's __popcountdi2, 5 % of the surface-contact wrench (perf).
   static constexpr std::size_t bitsSet(std::uint64_t x) noexcept {
@@ -78,6 +112,7 @@ private:
   std::vector<std::uint64_t> occupancy_;
   std::vector<std::uint32_t> first_;                 // per mask: the index of its first plane
   std::vector<std::vector<SurfacePlane>> segments_;  // all full but the last
+  std::vector<std::uint8_t> convexSides_;            // per plane
 };
 
 }  // namespace voxhap

@@ -32,6 +32,23 @@ struct SurfacePlane {
   glm::dvec3 outwardUnit() const noexcept {
     return glm::dvec3(outward[0], outward[1], outward[2]) / kDirectionSteps;
   }
+
+  /// Every one of a voxel's six face neighbours (sideBit).
+  static constexpr std::uint8_t kAllSides = 0x3f;
+  /// The bit of a voxel's face neighbour one step along `axis` (0, 1, 2) on `side` (−1, +1),
+  /// in a set of six (convexSides).
+  static constexpr std::uint8_t sideBit(int axis, int side) noexcept {
+    return static_cast<std::uint8_t>(1u << (2 * axis + (side > 0 ? 1 : 0)));
+  }
+  /// Whether this plane and `beside`'s, the plane of the face neighbour on `side` along
+  /// `axis`, agree with convexity between their centres: each lies under the other's value
+  /// at the other's centre, with no slack (surface_distance.h says why). Symmetric.
+  bool convexWith(const SurfacePlane& beside, int axis, int side) const noexcept {
+    const double ownVoxels = distanceVoxels();
+    const double besideVoxels = beside.distanceVoxels();
+    return besideVoxels - side * beside.outwardUnit()[axis] <= ownVoxels &&
+           ownVoxels + side * outwardUnit()[axis] <= besideVoxels;
+  }
 };
 
 }  // namespace voxhap

@@ -23,26 +23,6 @@ SurfacePlane SurfacePlane::make(double distanceVoxels, const glm::dvec3& outward
 
 namespace {
 
-/// Where each mixed chunk sits, by its block of words: its chunk coordinates.
-std::vector<glm::ivec3> chunkOfBlock(const Voxmap& voxmap) {
-  const glm::ivec3 dims = voxmap.grid().dimsHyper;
-  const std::span<const std::uint32_t> hyper = voxmap.hyperEntries();
-  const std::span<const std::uint32_t> chunks = voxmap.chunkEntries();
-  std::vector<glm::ivec3> out(voxmap.mixedChunkCount());
-  for (int z = 0; z < dims.z; ++z)
-    for (int y = 0; y < dims.y; ++y)
-      for (int x = 0; x < dims.x; ++x) {
-        const std::uint32_t entry = hyper[static_cast<std::size_t>(x + dims.x * (y + dims.y * z))];
-        if (entry & Voxmap::kUniform) continue;
-        for (std::uint32_t c = 0; c < kChunksPerHyper; ++c) {
-          const std::uint32_t chunk = chunks[std::size_t{entry} * kChunksPerHyper + c];
-          if (!(chunk & Voxmap::kUniform))
-            out[chunk] = glm::ivec3(x, y, z) * kHyperEdgeChunks + cellOfIndex(c);
-        }
-      }
-  return out;
-}
-
 /// Mixed chunks whose planes are computed together before they are packed: 16 MiB of
 /// planes at a time.
 constexpr std::size_t kChunksPerBatch = 4096;
@@ -51,7 +31,7 @@ constexpr std::size_t kChunksPerBatch = 4096;
 
 SparseSurfacePlanes computeSurfacePlanes(const Voxmap& voxmap, std::span<const TriangleMesh* const> meshes,
                                          const EmbreeScene& scene, int threads, const ProgressFn& progress) {
-  const std::vector<glm::ivec3> chunkOf = chunkOfBlock(voxmap);
+  const std::vector<glm::ivec3> chunkOf = voxmap.chunkOfEachBlock();
   SparseSurfacePlanes planes;
   std::vector<SurfacePlane> batch;
   const PseudoNormals pseudoNormals(meshes);

@@ -1,5 +1,6 @@
 #include "haptics/voxel/voxel_cache.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <functional>
@@ -132,6 +133,7 @@ void saveVoxelized(CacheFileWriter& w, const VoxelizedObject& v) {
   w.put(static_cast<std::uint64_t>(planes.planeCount()));
   for (std::size_t k = 0; k < planes.segmentCount(); ++k)
     w.write(planes.segment(k).data(), planes.segment(k).size_bytes());
+  w.write(planes.convexSides().data(), planes.convexSides().size_bytes());
 }
 
 /// What a voxmap cache file holds before its arrays.
@@ -170,6 +172,11 @@ SparseSurfacePlanes readPlanes(CacheFileReader& r, std::size_t mixedChunks, cons
   for (std::size_t k = 0; k < out.segmentCount(); ++k)
     r.read(out.segment(k).data(), out.segment(k).size_bytes());
   if (!out.complete()) throw CacheFileError("is corrupt (a stored surface plane is empty)");
+  std::vector<std::uint8_t> sides(out.planeCount());
+  r.read(sides.data(), sides.size());
+  if (!std::ranges::all_of(sides, [](std::uint8_t s) { return s <= SurfacePlane::kAllSides; }))
+    throw CacheFileError("is corrupt (a surface plane's convex sides are not six bits)");
+  out.setConvexSides(std::move(sides));
   if (out.chunkCount() != (options.surfacePlanes ? mixedChunks : 0))
     throw CacheFileError("is corrupt (surface planes do not match the voxmap)");
   return out;
@@ -189,7 +196,7 @@ VoxelizedObject loadVoxelized(CacheFileReader& r, const VoxelizeOptions& options
   v.voxmap = Voxmap(grid, encoding, std::move(hyper), std::move(chunks), std::move(voxelBytes),
                     std::move(chunkDistances));
   SparseSurfacePlanes planes = readPlanes(r, v.voxmap.mixedChunkCount(), options);
-  if (options.surfacePlanes) v.voxmap.setSurfacePlanes(std::move(planes));
+  if (options.surfacePlanes) v.voxmap.setSurfacePlanes(std::move(planes), options.threads);
   return v;
 }
 
@@ -265,7 +272,7 @@ std::optional<BudgetedVoxmap> openPaged(const fs::path& file, const Digest128& k
   const auto maskCount = r.get<std::uint64_t>();
   r.skip(maskCount * sizeof(std::uint64_t));
   const auto planeCount = r.get<std::uint64_t>();
-  r.skip(planeCount * sizeof(SurfacePlane));
+  r.skip(planeCount * (sizeof(SurfacePlane) + 1));
   r.finish();
   const std::string problem =
       Voxmap::validate(grid, encoding, hyper, chunks, wordBytes, chunkDistances.size());

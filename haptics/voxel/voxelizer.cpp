@@ -351,7 +351,7 @@ VoxelizeEstimate estimateVoxelizeBytes(std::span<const TriangleMesh* const> mesh
   // voxels between); the landing gear has 4.3 to 4.6 per A/s² at 2.5 to 1 mm voxels
   const double planeBytes =
       options.surfacePlanes ? std::min(6.0 * area / (s * s), double(chunks.mixedChunks) * kVoxelsPerChunk) *
-                                  sizeof(SurfacePlane)
+                                  (sizeof(SurfacePlane) + 1)  // and its convex sides
                             : 0.0;
   std::uint64_t triangles = 0;
   for (const TriangleMesh* mesh : meshes) triangles += mesh->triangles.size();
@@ -487,7 +487,7 @@ VoxelizedObject voxelize(std::span<const TriangleMesh* const> meshes, std::span<
                       stats};
   if (options.surfacePlanes)
     out.voxmap.setSurfacePlanes(
-        computeSurfacePlanes(out.voxmap, meshes, scene, options.threads, stage(0.7, 1.0)));
+        computeSurfacePlanes(out.voxmap, meshes, scene, options.threads, stage(0.7, 1.0)), options.threads);
   if (progress) progress(1.0);
   return out;
 }

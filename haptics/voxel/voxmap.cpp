@@ -3,6 +3,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "haptics/core/parallel.h"
+
 namespace voxhap {
 namespace {
 
@@ -48,9 +50,47 @@ Voxmap Voxmap::paged(VoxelGrid grid, VoxelEncoding encoding, std::vector<std::ui
   return v;
 }
 
-void Voxmap::setSurfacePlanes(SparseSurfacePlanes planes) {
+void Voxmap::setSurfacePlanes(SparseSurfacePlanes planes, int threads) {
   assert(!isPaged() && planes.chunkCount() == mixedChunkCount());
   planes_ = std::move(planes);
+  if (planes_.convexSides().size() == planes_.planeCount()) return;
+  const std::vector<glm::ivec3> chunkOf = chunkOfEachBlock();
+  std::vector<std::uint8_t> sides(planes_.planeCount());
+  parallelFor(chunkOf.size(), threads, [&](std::size_t block) {
+    const auto b = static_cast<std::uint32_t>(block);
+    std::size_t k = planes_.firstPlaneOf(b);
+    for (std::uint32_t i = 0; i < kVoxelsPerChunk; ++i) {
+      const SurfacePlane* plane = planes_.find(b, i);
+      if (!plane) continue;
+      const glm::ivec3 ijk = chunkOf[block] * kChunkEdgeVoxels + cellOfIndex(i);
+      std::uint8_t convex = 0;
+      for (const int side : {-1, 1}) {
+        const std::array<const SurfacePlane*, 3> beside = surfacePlanesBeside(ijk, glm::ivec3(side));
+        for (int axis = 0; axis < 3; ++axis) {
+          const SurfacePlane* other = beside[static_cast<std::size_t>(axis)];
+          if (other && plane->convexWith(*other, axis, side)) convex |= SurfacePlane::sideBit(axis, side);
+        }
+      }
+      sides[k++] = convex;
+    }
+  });
+  planes_.setConvexSides(std::move(sides));
+}
+
+std::vector<glm::ivec3> Voxmap::chunkOfEachBlock() const {
+  const glm::ivec3 dims = grid_.dimsHyper;
+  std::vector<glm::ivec3> out(mixedChunkCount());
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; ++x) {
+        const std::uint32_t entry = hyper_[static_cast<std::size_t>(x + dims.x * (y + dims.y * z))];
+        if (entry & kUniform) continue;
+        for (std::uint32_t c = 0; c < kChunksPerHyper; ++c) {
+          const std::uint32_t chunk = chunks_[std::size_t{entry} * kChunksPerHyper + c];
+          if (!(chunk & kUniform)) out[chunk] = glm::ivec3(x, y, z) * kHyperEdgeChunks + cellOfIndex(c);
+        }
+      }
+  return out;
 }
 
 std::string Voxmap::validate(const VoxelGrid& grid, const VoxelEncoding& encoding,

@@ -120,6 +120,13 @@ public:
     if (chunkEntry & kUniform) return nullptr;
     return planes_.find(chunkEntry, voxelInChunk(ijkVoxel));
   }
+  /// The same, with the sides on which its neighbours' planes are convex with it.
+  PlaneWithSides surfacePlaneWithSides(const glm::ivec3& ijkVoxel) const {
+    if (planes_.empty() || !grid_.containsVoxel(ijkVoxel)) return {};
+    const std::uint32_t chunkEntry = treeEntry_(ijkVoxel);
+    if (chunkEntry & kUniform) return {};
+    return planes_.findWithSides(chunkEntry, voxelInChunk(ijkVoxel));
+  }
   /// The surface planes of the voxels beside `ijkVoxel` along x, y and z, each on the side
   /// `side` names (−1 or +1 per axis), as surfacePlane() gives them: one tree walk for
   /// those in the chunk of `ijkVoxel`.
@@ -142,8 +149,10 @@ public:
     return beside;
   }
   /// Gives an unpaged voxmap its surface planes: one chunk of them per mixed chunk, in the
-  /// order of the chunks' blocks of words (computeSurfacePlanes).
-  void setSurfacePlanes(SparseSurfacePlanes planes);
+  /// order of the chunks' blocks of words (computeSurfacePlanes). Planes without their
+  /// convex sides (computeSurfacePlanes' planes; a cache file's have them) get them here,
+  /// on up to `threads` threads (0: all cores).
+  void setSurfacePlanes(SparseSurfacePlanes planes, int threads);
   bool hasSurfacePlanes() const noexcept { return !planes_.empty(); }
   const SparseSurfacePlanes& surfacePlanes() const noexcept { return planes_; }
 
@@ -180,6 +189,8 @@ public:
 
   /// Chunks stored voxel by voxel (the rest are uniform); of a whole voxmap.
   std::size_t mixedChunkCount() const { return voxelBytes().size() / blockBytes(); }
+  /// The chunk coordinates of each mixed chunk, by its block of words.
+  std::vector<glm::ivec3> chunkOfEachBlock() const;
   /// Bytes held by the tree's arrays and the chunk-level field.
   std::size_t memoryBytes() const {
     return hyper_.size() * sizeof(std::uint32_t) + chunks_.size() * sizeof(std::uint32_t) +

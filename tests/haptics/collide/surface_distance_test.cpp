@@ -42,9 +42,9 @@ struct Estimates {
 
 std::optional<Estimates> estimatesAt(const Voxmap& voxmap, const glm::dvec3& p) {
   const glm::ivec3 ijk = voxmap.grid().voxelOf(p);
-  const SurfacePlane* plane = voxmap.surfacePlane(ijk);
-  if (!plane) return std::nullopt;
-  const OwnPlaneReading own = readOwnPlane(voxmap.grid(), ijk, *plane, p);
+  const PlaneWithSides plane = voxmap.surfacePlaneWithSides(ijk);
+  if (!plane.plane) return std::nullopt;
+  const OwnPlaneReading own = readOwnPlane(voxmap.grid(), ijk, plane, p);
   return Estimates{own.distanceM, surfaceDistance(voxmap, ijk, own).distanceM};
 }
 

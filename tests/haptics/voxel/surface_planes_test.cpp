@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -156,6 +158,57 @@ TEST(SurfacePlanes, BesideAVoxelAreItsNeighboursPlanesOnEitherSideWithinChunksAc
         }
   // each plane is beside 24 (voxel, side, axis) of these: two voxels an axis, four sides each
   EXPECT_EQ(planesBeside, 24 * voxmap.surfacePlanes().planeCount());
+}
+
+/// Of the face-neighbour pairs whose voxels both have planes, the share whose planes are
+/// convex with each other; checks every plane's convex sides against convexWith and against
+/// the neighbour's own sides on the way.
+double convexShare(const Voxmap& voxmap, const std::function<bool(const glm::dvec3&)>& counted) {
+  std::size_t pairs = 0;
+  std::size_t convex = 0;
+  forEachVoxel(voxmap, [&](const glm::ivec3& ijk, const glm::dvec3& c) {
+    const PlaneWithSides own = voxmap.surfacePlaneWithSides(ijk);
+    EXPECT_EQ(own.plane, voxmap.surfacePlane(ijk));
+    if (!own.plane) return;
+    for (int axis = 0; axis < 3; ++axis)
+      for (const int side : {-1, 1}) {
+        glm::ivec3 v = ijk;
+        v[axis] += side;
+        const PlaneWithSides beside = voxmap.surfacePlaneWithSides(v);
+        const bool bit = (own.convexSides & SurfacePlane::sideBit(axis, side)) != 0;
+        const bool expected = beside.plane && own.plane->convexWith(*beside.plane, axis, side);
+        ASSERT_EQ(bit, expected) << ijk.x << " " << ijk.y << " " << ijk.z << " axis " << axis << " side "
+                                 << side;
+        if (!beside.plane) continue;
+        ASSERT_EQ(bit, (beside.convexSides & SurfacePlane::sideBit(axis, -side)) != 0);
+        if (!counted(c)) continue;
+        ++pairs;
+        convex += bit ? 1 : 0;
+      }
+  });
+  EXPECT_GT(pairs, 1000u);
+  return static_cast<double>(convex) / static_cast<double>(pairs);
+}
+
+TEST(SurfacePlanes, ConvexSidesAreTheNeighboursWhosePlanesAgreeWithConvexityMostAroundABallFewInASocket) {
+  TriangleMesh sphere;
+  appendGeodesicSphere(sphere, glm::translate(glm::dmat4(1.0), glm::dvec3(0.006)), 0.005, 5);
+  // the signed distance of a ball is convex inside and out: its planes, but for their
+  // quantization, agree with convexity
+  const double ballShare = convexShare(voxelizeWithPlanes(sphere), [](const glm::dvec3&) { return true; });
+  EXPECT_GT(ballShare, 0.9);
+  // in a socket's cavity the distance is concave: hardly a pair agrees
+  constexpr double kCavityRadiusM = 0.006;
+  const glm::dvec3 centre(0.01);
+  TriangleMesh socket;
+  appendSphericalSocket(socket, glm::translate(glm::dmat4(1.0), centre),
+                        SocketSpec{kCavityRadiusM, 0.01, 0.009, 0.6}, 64, 15);
+  const double cavityShare = convexShare(voxelizeWithPlanes(socket), [&](const glm::dvec3& c) {
+    return c.z < centre.z && glm::length(c - centre) < kCavityRadiusM;
+  });
+  EXPECT_LT(cavityShare, 0.1);
+  std::printf("[ figures  ] convex face-neighbour pairs: %.3f around a ball, %.3f in a socket's cavity\n",
+              ballShare, cavityShare);
 }
 
 }  // namespace
