@@ -106,13 +106,13 @@ protected:
   CacheOptions cache() const { return {dir_.path() / "voxels", true}; }
 
   /// A fresh build, then a corrupted copy of its file, then a run that must rebuild it.
-  void expectRebuiltAfter(const std::function<void(std::vector<char>&)>& corrupt,
-                          const std::string& warning) {
-    const CachedVoxelization first = voxelizeCached(objects_.both, voxelOptions(), cache());
+  void expectRebuiltAfter(const std::function<void(std::vector<char>&)>& corrupt, const std::string& warning,
+                          const VoxelizeOptions& options = voxelOptions()) {
+    const CachedVoxelization first = voxelizeCached(objects_.both, options, cache());
     std::vector<char> bytes = readBytes(first.cacheFile);
     corrupt(bytes);
     writeBytes(first.cacheFile, bytes);
-    const CachedVoxelization again = voxelizeCached(objects_.both, voxelOptions(), cache());
+    const CachedVoxelization again = voxelizeCached(objects_.both, options, cache());
     EXPECT_FALSE(again.cacheHit);
     ASSERT_EQ(again.warnings.size(), 1u);
     EXPECT_NE(again.warnings[0].find(first.cacheFile.string()), std::string::npos) << again.warnings[0];
@@ -120,7 +120,7 @@ protected:
     EXPECT_NE(again.warnings[0].find("rebuilt"), std::string::npos) << again.warnings[0];
     expectSameVoxmap(again.voxelized.voxmap, first.voxelized.voxmap);
     // the rebuilt file is good again
-    const CachedVoxelization third = voxelizeCached(objects_.both, voxelOptions(), cache());
+    const CachedVoxelization third = voxelizeCached(objects_.both, options, cache());
     EXPECT_TRUE(third.cacheHit);
     EXPECT_TRUE(third.warnings.empty());
   }
@@ -199,6 +199,30 @@ TEST_F(VoxelCache, SurfacePlanesAreKeptAndComeBackTheSame) {
   const CachedVoxelization without = voxelizeCached(objects_.both, voxelOptions(), cache());
   EXPECT_NE(without.cacheFile, miss.cacheFile);
   EXPECT_FALSE(without.voxelized.voxmap.hasSurfacePlanes());
+}
+
+TEST_F(VoxelCache, SurfacePlanesThatDoNotMatchTheirMasksOrAreEmptyOrHaveSidesBeyondSixAreRebuilt) {
+  VoxelizeOptions planes = voxelOptions();
+  planes.surfacePlanes = true;
+  const std::size_t planeCount =
+      voxelizeCached(objects_.both, planes, {{}, false}).voxelized.voxmap.surfacePlanes().planeCount();
+  ASSERT_GT(planeCount, 0u);
+  // the payload ends with the plane count, the planes and their convex sides; then the checksum,
+  // which the loader checks after them
+  constexpr std::size_t kChecksumBytes = 16;
+  auto sidesAt = [&](const std::vector<char>& b) { return b.size() - kChecksumBytes - planeCount; };
+  auto planesAt = [&](const std::vector<char>& b) { return sidesAt(b) - planeCount * sizeof(SurfacePlane); };
+  expectRebuiltAfter([&](std::vector<char>& b) { b[sidesAt(b) + planeCount / 2] = 0x40; },
+                     "convex sides are not six bits", planes);
+  expectRebuiltAfter(
+      [&](std::vector<char>& b) {
+        // the last plane's distance: SurfacePlane::kNone, little-endian
+        b[planesAt(b) + (planeCount - 1) * sizeof(SurfacePlane)] = 0x00;
+        b[planesAt(b) + (planeCount - 1) * sizeof(SurfacePlane) + 1] = static_cast<char>(0x80);
+      },
+      "a stored surface plane is empty", planes);
+  expectRebuiltAfter([&](std::vector<char>& b) { ++b[planesAt(b) - sizeof(std::uint64_t)]; },
+                     "surface planes do not match their masks", planes);
 }
 
 TEST_F(VoxelCache, KeyCoversVoxelSizeBitsAwarenessAndGeometry) {
