@@ -62,19 +62,22 @@ void Voxmap::setSurfacePlanes(SparseSurfacePlanes planes, int threads) {
     for (std::uint32_t i = 0; i < kVoxelsPerChunk; ++i) {
       const SurfacePlane* plane = planes_.find(b, i);
       if (!plane) continue;
-      const glm::ivec3 ijk = chunkOf[block] * kChunkEdgeVoxels + cellOfIndex(i);
-      std::uint8_t convex = 0;
-      for (const int side : {-1, 1}) {
-        const std::array<const SurfacePlane*, 3> beside = surfacePlanesBeside(ijk, glm::ivec3(side));
-        for (int axis = 0; axis < 3; ++axis) {
-          const SurfacePlane* other = beside[static_cast<std::size_t>(axis)];
-          if (other && plane->convexWith(*other, axis, side)) convex |= SurfacePlane::sideBit(axis, side);
-        }
-      }
-      sides[k++] = convex;
+      sides[k++] = convexSidesOf_(chunkOf[block] * kChunkEdgeVoxels + cellOfIndex(i), *plane);
     }
   });
   planes_.setConvexSides(std::move(sides));
+}
+
+std::uint8_t Voxmap::convexSidesOf_(const glm::ivec3& ijkVoxel, const SurfacePlane& plane) const {
+  std::uint8_t convex = 0;
+  for (const int side : {-1, 1}) {
+    const std::array<const SurfacePlane*, 3> beside = surfacePlanesBeside(ijkVoxel, glm::ivec3(side));
+    for (int axis = 0; axis < 3; ++axis) {
+      const SurfacePlane* other = beside[static_cast<std::size_t>(axis)];
+      if (other && plane.convexWith(*other, axis, side)) convex |= SurfacePlane::sideBit(axis, side);
+    }
+  }
+  return convex;
 }
 
 std::vector<glm::ivec3> Voxmap::chunkOfEachBlock() const {

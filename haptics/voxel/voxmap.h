@@ -115,17 +115,14 @@ public:
   /// The surface plane of voxel `ijkVoxel` (surface_planes.h), or null: the voxmap has
   /// none, or the voxel lies outside the grid, in a uniform chunk or beyond the planes' band.
   const SurfacePlane* surfacePlane(const glm::ivec3& ijkVoxel) const {
-    if (planes_.empty() || !grid_.containsVoxel(ijkVoxel)) return nullptr;
-    const std::uint32_t chunkEntry = treeEntry_(ijkVoxel);
-    if (chunkEntry & kUniform) return nullptr;
-    return planes_.find(chunkEntry, voxelInChunk(ijkVoxel));
+    const std::uint32_t chunkEntry = planesEntry_(ijkVoxel);
+    return chunkEntry & kUniform ? nullptr : planes_.find(chunkEntry, voxelInChunk(ijkVoxel));
   }
   /// The same, with the sides on which its neighbours' planes are convex with it.
   PlaneWithSides surfacePlaneWithSides(const glm::ivec3& ijkVoxel) const {
-    if (planes_.empty() || !grid_.containsVoxel(ijkVoxel)) return {};
-    const std::uint32_t chunkEntry = treeEntry_(ijkVoxel);
-    if (chunkEntry & kUniform) return {};
-    return planes_.findWithSides(chunkEntry, voxelInChunk(ijkVoxel));
+    const std::uint32_t chunkEntry = planesEntry_(ijkVoxel);
+    return chunkEntry & kUniform ? PlaneWithSides{}
+                                 : planes_.findWithSides(chunkEntry, voxelInChunk(ijkVoxel));
   }
   /// The surface planes of the voxels beside `ijkVoxel` along x, y and z, each on the side
   /// `side` names (−1 or +1 per axis), as surfacePlane() gives them: one tree walk for
@@ -296,6 +293,14 @@ private:
 
   /// The tree's entry for the chunk of `ijkVoxel` (inside the grid): kUniform | word, or
   /// the index of its block.
+  /// The chunk entry of `ijkVoxel` for a plane lookup: kUniform where it can have none
+  /// (no planes, outside the grid, a uniform chunk).
+  std::uint32_t planesEntry_(const glm::ivec3& ijkVoxel) const {
+    return planes_.empty() || !grid_.containsVoxel(ijkVoxel) ? kUniform : treeEntry_(ijkVoxel);
+  }
+  /// The sides of voxel `ijkVoxel`, whose plane is `plane`, on which its neighbours' planes
+  /// are convex with it.
+  std::uint8_t convexSidesOf_(const glm::ivec3& ijkVoxel, const SurfacePlane& plane) const;
   std::uint32_t treeEntry_(const glm::ivec3& ijkVoxel) const {
     const glm::ivec3 h = ijkVoxel >> (kChunkEdgeLog2 + kHyperEdgeLog2);
     const std::uint32_t hyperEntry =
