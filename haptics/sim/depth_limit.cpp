@@ -305,7 +305,8 @@ DepthLimitFrame limitDepths(std::span<const MovingObjectModel> objects,
       std::any_of(s.deltas.begin(), s.deltas.end(), [](const Delta& d) { return d.streamed; });
   if (remote && (limitsScale < 1.0 || (travel < 1.0 && !scalingTheRestKeepsLimits(s, count)))) {
     // a local part trapped against a remote one that moves, or pushed by it faster than it
-    // can give way: the remote one yields too
+    // can give way, or two owners' remote parts streamed into each other: the remote ones
+    // yield too
     for (Delta& d : s.deltas) d.yielding = d.streamed;
     setUp(objects, before, after, s, count);
     scale = solve(s, count);

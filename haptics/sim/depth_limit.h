@@ -130,7 +130,8 @@ struct DepthLimitScratch {
     /// Set by the caller each frame: a body a remote peer moves (KinematicInput). No limit
     /// moves it, so that every peer shows it where its owner has it, unless the limits
     /// cannot hold otherwise (a local part trapped between it and a third, or pushed by it
-    /// faster than its MaxTravel lets it give way): then it yields
+    /// faster than its MaxTravel lets it give way, or another owner's remote part pressed
+    /// against it): then it yields
     /// with its own mass like any body, and goes on yielding until it has no contact left
     /// or its stream no longer moves it.
     bool kinematic = false;

@@ -29,10 +29,10 @@ struct HandleInput {
 /// no force here (its contacts still push the local objects). Its step is held to its
 /// MaxTravel like any other, so that no contact is skipped, and the depth limits do not
 /// move it, so that every peer shows it where its owner has it; only a local part trapped
-/// between it and a third, or pushed by it faster than its MaxTravel lets it give way,
-/// makes it yield (depth_limit.h): it then lags its stream until
-/// it is free, and its owner's peer, which simulates the same contact, stops it one delay
-/// later.
+/// between it and a third, or pushed by it faster than its MaxTravel lets it give way, or
+/// another owner's remote part that the two streams carry into it, makes it yield
+/// (depth_limit.h): it then lags its stream until it is free, and its owner's peer, which
+/// simulates the same contact, stops it one delay later.
 struct KinematicInput {
   bool active = false;
   RigidBodyState targetWorld;  ///< where the stream puts it at the frame's end

@@ -72,9 +72,23 @@ bool onlyStreamed(int object, std::span<const KinematicInput> kinematic, const D
   return i < kinematic.size() && kinematic[i].active && !s.deltas[i].yielding;
 }
 
+/// Whether nothing here can move `pair`'s bodies but one owner's stream: its owner's peer
+/// simulates that pair, and its stream shows the result. Two owners' streams, each played
+/// out a delay of its own behind its owner, can carry their parts into each other here: such
+/// a pair is tested here like any other, and its parts yield (depth_limit.h).
+bool leftToOneOwner(const PairModel& pair, const SimState& state, std::span<const KinematicInput> kinematic,
+                    const DepthLimitScratch& s) {
+  if (!onlyStreamed(pair.shellObject, kinematic, s) || !onlyStreamed(pair.voxmapObject, kinematic, s))
+    return false;
+  auto owner = [&state](int object) {
+    const auto i = static_cast<std::size_t>(object);
+    return i < state.owners.size() ? state.owners[i] : kNoPeer;
+  };
+  return pair.voxmapObject == kStaticEnvironment || owner(pair.shellObject) == owner(pair.voxmapObject);
+}
+
 /// Step 1: which pairs are in range, every object's MaxTravel bound, and Eq. 2 over them.
-/// A pair of which nothing here moves but by a stream is left to its owners' peers (it
-/// could not change a body here), as if out of range.
+/// A pair left to one owner (leftToOneOwner) counts as out of range.
 void planFrame(const SimModel& model, const SimState& state, std::span<const KinematicInput> kinematic,
                SimWorkspace& ws, CoherenceFrame& plan) {
   const bool coherent = !ws.coherence.empty();
@@ -84,10 +98,9 @@ void planFrame(const SimModel& model, const SimState& state, std::span<const Kin
     PairFrame& frame = ws.pairFrames[p];
     const Voxmap& voxmap = model.voxmapOf(pair);
     const Pose shellToVoxmap = shellToVoxmapPose(model, state, pair);
-    const bool streamedOnly = onlyStreamed(pair.shellObject, kinematic, ws.depthScratch) &&
-                              onlyStreamed(pair.voxmapObject, kinematic, ws.depthScratch);
-    frame.inRange = !streamedOnly && inRange(model.objects[static_cast<std::size_t>(pair.shellObject)],
-                                             shellToVoxmap, voxmap.grid());
+    frame.inRange =
+        !leftToOneOwner(pair, state, kinematic, ws.depthScratch) &&
+        inRange(model.objects[static_cast<std::size_t>(pair.shellObject)], shellToVoxmap, voxmap.grid());
     if (frame.inRange) frame.transform = VoxelTransform::make(shellToVoxmap, voxmap.grid());
     ws.counters.pairsSkipped += frame.inRange ? 0 : 1;
     const bool far = coherent && (!frame.inRange || ws.coherence[p].onlyCollapsed());

@@ -71,6 +71,7 @@ void pushScenario(PeerCommand& test, const Path& path) {
   // (until the middle box's owner has felt it and 2 s more; a sanitizer's build is slower)
   std::array<std::uint32_t, 3> middleContacts{};
   double deepestM = 0.0;
+  std::string deepestSeen = "no overlap";
   auto until = std::chrono::steady_clock::now() + 30s;
   for (bool felt = false; std::chrono::steady_clock::now() < until;) {
     for (std::size_t i = 0; i < clients.size(); ++i) {
@@ -79,7 +80,13 @@ void pushScenario(PeerCommand& test, const Path& path) {
       middleContacts[i] = std::max(middleContacts[i], u.objects(1).contacts());
       // left's +x face at −15 mm + its motion, middle's −x face at −10 mm + its motion
       const double overlapM = (positionOf(u.objects(0)).x - 0.015) - (positionOf(u.objects(1)).x - 0.010);
-      deepestM = std::max(deepestM, overlapM);
+      if (overlapM > deepestM) {
+        deepestM = overlapM;
+        deepestSeen = "peer " + std::to_string(i) + " showed left at x " +
+                      std::to_string(positionOf(u.objects(0)).x * 1e3) + " mm, middle at x " +
+                      std::to_string(positionOf(u.objects(1)).x * 1e3) + " mm, middle's contacts " +
+                      std::to_string(u.objects(1).contacts());
+      }
     }
     if (!felt && middleContacts[1] > 0) {
       felt = true;
@@ -88,7 +95,7 @@ void pushScenario(PeerCommand& test, const Path& path) {
     std::this_thread::sleep_for(50ms);
   }
   EXPECT_GT(middleContacts[1], 0u) << "the middle box's owner felt no contact";
-  EXPECT_LT(deepestM, 0.1 * kBoxesVoxelM);
+  EXPECT_LT(deepestM, 0.1 * kBoxesVoxelM) << deepestSeen;
   const double pushedM = positionOf(newestUpdate(*clients[0]).objects(0)).x;
   EXPECT_GT(pushedM, 0.003) << "the left box was not pushed";
   slideHandle(*clients[0], "left", {0.015, 0.0, 0.0}, {0.0, 0.0, 0.0});

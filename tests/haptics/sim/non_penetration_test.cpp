@@ -42,6 +42,9 @@ using test::at;
 /// A target pose of an object's local frame (relative to where the scene puts it) at time t.
 using HandleFn = std::function<Pose(double tS)>;
 
+/// A remote peer that owns a part of a case.
+constexpr PeerId kRemotePeer = 7;
+
 /// From the loaded pose to `target` in `rampS`, then held.
 HandleFn ramp(const Pose& target, double rampS) {
   return [target, rampS](double t) { return interpolate(Pose{}, target, std::min(1.0, t / rampS)); };
@@ -61,9 +64,10 @@ struct Case {
   /// Exact depth the meshes already have where the scene puts them (the ball's vertices
   /// poke through the socket's facets by design): only sinking beyond it counts.
   bool fromLoadedDepth = false;
-  /// Per moving object: a remote peer's (type-1), moved as a kinematic body to its
-  /// handle's pose (KinematicInput) instead of being coupled to it; empty: none.
-  std::vector<bool> remote = {};
+  /// Per moving object, the remote peer that owns it (type-1; kNoPeer: this peer's): such
+  /// an object is moved as a kinematic body to its handle's pose (KinematicInput) instead
+  /// of being coupled to it; empty: none.
+  std::vector<PeerId> remote = {};
   /// Exact checks every this many frames, and after the last.
   int checkEvery = kCheckEvery;
   /// Contact by surface planes (SimOptions::surfaceContact) instead of the paper's voxel planes.
@@ -115,13 +119,14 @@ Outcome run(const std::string& name, const Case& c) {
   const double loadedM = c.fromLoadedDepth ? deepest(where) : 0.0;
   std::vector<HandleInput> handles(model.objects.size());
   std::vector<KinematicInput> kinematic(model.objects.size());
+  for (std::size_t i = 0; i < c.remote.size(); ++i) state.owners[i] = c.remote[i];
   Outcome out;
   out.restFrame = -1;
   for (int frame = 0; frame < c.frames; ++frame) {
     const double t = (frame + 1) * model.dtS;
     for (std::size_t i = 0; i < handles.size(); ++i) {
       handles[i] = {c.handles[i](t), {}};
-      if (i < c.remote.size() && c.remote[i]) {
+      if (i < c.remote.size() && c.remote[i] != kNoPeer) {
         kinematic[i] = {true, restingState(model.objects[i].body, handles[i].poseWorld)};
         kinematic[i].targetWorld.linearVelocityWorld =
             (handles[i].poseWorld.position - c.handles[i](t - model.dtS).position) / model.dtS;
@@ -434,7 +439,7 @@ TEST_P(NonPenetration, ALocalPartPressedByItsHandleIntoAStillRemoteOne) {
              {"left", "right"},
              {leftIsRemote ? held : pressed, leftIsRemote ? pressed : held},
              voxelM};
-      c.remote = {leftIsRemote, !leftIsRemote};
+      c.remote = {leftIsRemote ? kRemotePeer : kNoPeer, leftIsRemote ? kNoPeer : kRemotePeer};
       expectWithinBound(std::string("a local part pressed into a still remote one (") +
                             (leftIsRemote ? "left" : "right") + " remote)",
                         c);
@@ -461,8 +466,22 @@ TEST_P(NonPenetration, ARemotePartDrivenDownThroughALocalOneOnAPlate) {
            {"box", "remote"},
            {[](double) { return Pose{}; }, ramp(moved(0.0, 0.0, -0.02), 0.4)},
            voxelM};
-    c.remote = {false, true};
+    c.remote = {kNoPeer, kRemotePeer};
     expectWithinBound("a remote part driven down onto a local one", c);
+  }
+}
+
+TEST_P(NonPenetration, TwoRemotePartsOfTwoOwnersStreamedIntoEachOtherYieldHere) {
+  for (const double voxelM : kVoxelsM) {
+    // each stream as its owner's peer played it out, with delays of their own: the
+    // smaller box's goes 20 mm down through the larger, whose stream holds it where it is.
+    // Neither is this peer's, but their streams must not carry one into the other here
+    Case c{remoteBoxOverLocalBox(),
+           {"box", "remote"},
+           {[](double) { return Pose{}; }, ramp(moved(0.0, 0.0, -0.02), 0.4)},
+           voxelM};
+    c.remote = {kRemotePeer, kRemotePeer + 1};
+    expectWithinBound("two remote parts of two owners", c);
   }
 }
 
@@ -490,7 +509,7 @@ TEST_P(NonPenetration, ARemotePartCatchingUpWithItsStreamPushesALongBarsEnd) {
            {ramp(moved(-0.02, 0.0, 0.0), 0.4),
             [](double t) { return t < 0.05 ? Pose{} : moved(0.0, 0.0, -0.02); }},
            voxelM};
-    c.remote = {false, true};
+    c.remote = {kNoPeer, kRemotePeer};
     expectWithinBound("a remote part catching up pushes a bar's end", c);
   }
 }
