@@ -291,8 +291,6 @@ private:
   /// Words of useClock_: the clock, then padding to a cache line of its own.
   static constexpr std::size_t kClockWords = 64 / sizeof(std::uint32_t);
 
-  /// The tree's entry for the chunk of `ijkVoxel` (inside the grid): kUniform | word, or
-  /// the index of its block.
   /// The chunk entry of `ijkVoxel` for a plane lookup: kUniform where it can have none
   /// (no planes, outside the grid, a uniform chunk).
   std::uint32_t planesEntry_(const glm::ivec3& ijkVoxel) const {
@@ -301,6 +299,8 @@ private:
   /// The sides of voxel `ijkVoxel`, whose plane is `plane`, on which its neighbours' planes
   /// are convex with it.
   std::uint8_t convexSidesOf_(const glm::ivec3& ijkVoxel, const SurfacePlane& plane) const;
+  /// The tree's entry for the chunk of `ijkVoxel` (inside the grid): kUniform | word, or
+  /// the index of its block.
   std::uint32_t treeEntry_(const glm::ivec3& ijkVoxel) const {
     const glm::ivec3 h = ijkVoxel >> (kChunkEdgeLog2 + kHyperEdgeLog2);
     const std::uint32_t hyperEntry =
